@@ -1,0 +1,7 @@
+"""``python -m rosaadl`` runs the command line."""
+
+import sys
+
+from rosaadl.cli import main
+
+sys.exit(main())

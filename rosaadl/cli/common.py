@@ -1,0 +1,110 @@
+"""What every verb shares: the run options, the report it prints, and the exit-code policy.
+
+Exit codes: 0 ok, 1 model/validation/analysis errors, 2 usage, 3 internal error.
+With ``--format json`` stdout carries exactly one JSON document::
+
+    {"ok": bool, "errors": [{"message", "file", "line", "column", "path", ...}], "warnings": [...], ...}
+
+Progress and logs go to stderr; data goes to stdout or files.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from dataclasses import dataclass, field
+from typing import Any
+
+import click
+
+from rosaadl.errors import Diagnostic, RosaadlError
+
+__all__ = [
+    "Options",
+    "Report",
+    "EXIT_OK",
+    "EXIT_ERRORS",
+    "EXIT_USAGE",
+    "EXIT_INTERNAL",
+    "pass_options",
+    "not_yet",
+]
+
+EXIT_OK = 0
+EXIT_ERRORS = 1
+EXIT_USAGE = 2
+EXIT_INTERNAL = 3
+
+
+@dataclass
+class Options:
+    """Global options of one invocation (``--format``, ``--debug``, verbosity)."""
+
+    format: str = "text"
+    debug: bool = False
+    verbosity: int = 0
+
+    def progress(self, message: str) -> None:
+        if self.verbosity >= 0:
+            click.echo(message, err=True)
+
+
+pass_options = click.make_pass_decorator(Options, ensure=True)
+
+
+def _diag_dict(item: RosaadlError | Diagnostic) -> dict[str, Any]:
+    data = item.as_dict()
+    data.setdefault("severity", "error" if isinstance(item, RosaadlError) else item.severity)
+    return data
+
+
+@dataclass
+class Report:
+    """The outcome of a verb: errors, warnings, and verb-specific data; printed once at the end."""
+
+    errors: list[RosaadlError | Diagnostic] = field(default_factory=list)
+    warnings: list[RosaadlError | Diagnostic] = field(default_factory=list)
+    data: dict[str, Any] = field(default_factory=dict)
+    lines: list[str] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not self.errors
+
+    def error(self, item: RosaadlError | Diagnostic) -> None:
+        self.errors.append(item)
+
+    def warn(self, item: RosaadlError | Diagnostic) -> None:
+        self.warnings.append(item)
+
+    def say(self, line: str) -> None:
+        self.lines.append(line)
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "ok": self.ok,
+            "errors": [_diag_dict(e) for e in self.errors],
+            "warnings": [_diag_dict(w) for w in self.warnings],
+            **self.data,
+        }
+
+    def emit(self, options: Options) -> int:
+        if options.format == "json":
+            click.echo(json.dumps(self.as_json(), indent=2, sort_keys=False, default=str))
+        else:
+            for line in self.lines:
+                click.echo(line)
+            if options.verbosity >= 0:
+                for warning in self.warnings:
+                    click.echo(
+                        f"warning: {warning}" if isinstance(warning, RosaadlError) else str(warning), err=True
+                    )
+            for error in self.errors:
+                click.echo(f"error: {error}" if isinstance(error, RosaadlError) else str(error), err=True)
+        return EXIT_OK if self.ok else EXIT_ERRORS
+
+
+def not_yet(verb: str, issue: str) -> None:
+    """A verb that is registered but not implemented says so and exits 2; it does not pretend."""
+    click.echo(f"rosaadl {verb}: not implemented yet ({issue})", err=True)
+    sys.exit(EXIT_USAGE)

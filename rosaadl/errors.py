@@ -1,0 +1,188 @@
+"""One exception root for everything rosaadl reports to a user.
+
+Every error carries a :class:`Location` (file:line:column for text formats, an element
+path for XML, an instance path for models) and a message that says what was expected.
+The command line turns a :class:`RosaadlError` into exit code 1 and a one-line report;
+anything else is an internal error (exit code 3).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = [
+    "Location",
+    "Diagnostic",
+    "RosaadlError",
+    "ModelError",
+    "ValidationError",
+    "ParseError",
+    "AadlSyntaxError",
+    "NameResolutionError",
+    "ImportFormatError",
+    "TransformationError",
+    "AnalysisError",
+    "ExportError",
+    "GenerationError",
+    "UsageError",
+]
+
+
+@dataclass(frozen=True)
+class Location:
+    """Where something is: a file with line/column, an XML element path, or a model path."""
+
+    file: str | None = None
+    line: int | None = None
+    column: int | None = None
+    path: str | None = None  # XML element path (/cheddar/tasks/periodic_task[2]) or instance path
+
+    def __str__(self) -> str:
+        parts: list[str] = []
+        if self.file:
+            text = self.file
+            if self.line is not None:
+                text += f":{self.line}"
+                if self.column is not None:
+                    text += f":{self.column}"
+            parts.append(text)
+        if self.path:
+            parts.append(self.path)
+        return " ".join(parts)
+
+    def as_dict(self) -> dict[str, object]:
+        return {"file": self.file, "line": self.line, "column": self.column, "path": self.path}
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """A located finding that is not (yet) an exception: warnings, analysis results."""
+
+    severity: str  # "error" | "warning" | "info"
+    message: str
+    location: Location = field(default_factory=Location)
+
+    def __str__(self) -> str:
+        where = str(self.location)
+        return f"{where}: {self.severity}: {self.message}" if where else f"{self.severity}: {self.message}"
+
+    def as_dict(self) -> dict[str, object]:
+        return {"severity": self.severity, "message": self.message, **self.location.as_dict()}
+
+
+class RosaadlError(Exception):
+    """Root of every error rosaadl reports to a user."""
+
+    stage = "model"
+
+    def __init__(
+        self,
+        message: str,
+        location: Location | None = None,
+        *,
+        file: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+        path: str | None = None,
+    ) -> None:
+        if location is None:
+            location = Location(file=file, line=line, column=column, path=path)
+        self.message = message
+        self.location = location
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        where = str(self.location)
+        return f"{where}: {self.message}" if where else self.message
+
+    def as_dict(self) -> dict[str, object]:
+        return {"message": self.message, "stage": self.stage, **self.location.as_dict()}
+
+    def as_diagnostic(self) -> Diagnostic:
+        return Diagnostic("error", self.message, self.location)
+
+
+class ModelError(RosaadlError):
+    """A model is inconsistent, or an API call on it is wrong (unknown feature, bad value)."""
+
+    stage = "model"
+
+
+class ValidationError(ModelError):
+    """A model file does not conform to its metamodel."""
+
+    stage = "validation"
+
+
+class ParseError(RosaadlError):
+    """An input file cannot be read (syntax, encoding, truncation)."""
+
+    stage = "parse"
+
+
+class AadlSyntaxError(ParseError):
+    """AADL text does not follow the grammar; the message lists the expected tokens."""
+
+    stage = "parse"
+
+
+class NameResolutionError(RosaadlError):
+    """A qualified name, classifier, property or path does not resolve."""
+
+    stage = "resolve"
+
+
+class ImportFormatError(ParseError):
+    """An XML/zip/JSON input (aaxl2, Cheddar, WebGME) is malformed, hostile or unsupported."""
+
+    stage = "import"
+
+
+class TransformationError(RosaadlError):
+    """A transformation rule failed; names the rule and the source element."""
+
+    stage = "transform"
+
+    def __init__(
+        self,
+        message: str,
+        location: Location | None = None,
+        *,
+        rule: str | None = None,
+        source: str | None = None,
+        **kwargs: object,
+    ) -> None:
+        self.rule = rule
+        self.source = source
+        prefix = []
+        if rule:
+            prefix.append(f"rule {rule!r}")
+        if source:
+            prefix.append(f"on {source}")
+        if prefix:
+            message = f"{' '.join(prefix)}: {message}"
+        super().__init__(message, location, **kwargs)  # type: ignore[arg-type]
+
+
+class AnalysisError(RosaadlError):
+    """An analysis cannot run on the given instance (missing root, unusable model)."""
+
+    stage = "analysis"
+
+
+class ExportError(RosaadlError):
+    """A model cannot be written in the requested format."""
+
+    stage = "export"
+
+
+class GenerationError(ExportError):
+    """Code generation failed (unsafe names, lost user code, conflicting files)."""
+
+    stage = "generate"
+
+
+class UsageError(RosaadlError):
+    """The command line or API was called wrongly (exit code 2 on the CLI)."""
+
+    stage = "usage"

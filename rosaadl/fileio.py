@@ -1,0 +1,131 @@
+"""Atomic, contained file writes and hardened XML parsing shared by every reader and writer."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import IO
+
+from lxml import etree
+
+from rosaadl.errors import ExportError, ImportFormatError, Location
+
+__all__ = [
+    "atomic_write",
+    "atomic_write_bytes",
+    "atomic_write_text",
+    "safe_join",
+    "safe_xml_parser",
+    "parse_xml_bytes",
+    "element_path",
+]
+
+
+@contextmanager
+def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]:
+    """Write to a temporary file beside ``path`` and rename it into place on success.
+
+    On any exception the temporary file is removed and ``path`` is left as it was: a failed
+    run never leaves a partial output file.
+    """
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    try:
+        encoding = None if "b" in mode else "utf-8"
+        newline = None if "b" in mode else ""
+        with os.fdopen(fd, mode, encoding=encoding, newline=newline) as handle:
+            yield handle
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+
+
+def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
+    with atomic_write(path, "wb") as handle:
+        handle.write(data)
+
+
+def atomic_write_text(path: str | os.PathLike[str], text: str) -> None:
+    with atomic_write(path, "w") as handle:
+        handle.write(text)
+
+
+def safe_join(root: str | os.PathLike[str], *parts: str) -> Path:
+    """Join ``parts`` under ``root`` and refuse any result outside it (``..``, absolute, links)."""
+    base = Path(root).resolve()
+    candidate = base.joinpath(*parts)
+    resolved = candidate.resolve()
+    if resolved != base and base not in resolved.parents:
+        raise ExportError(
+            f"refusing to write {'/'.join(parts)!r}: it would land outside the output directory {str(root)!r}"
+        )
+    return candidate
+
+
+def safe_xml_parser(*, remove_blank_text: bool = False) -> etree.XMLParser:
+    """An lxml parser with entity resolution, DTD loading and network access all off."""
+    return etree.XMLParser(
+        resolve_entities=False,
+        no_network=True,
+        load_dtd=False,
+        dtd_validation=False,
+        huge_tree=False,
+        remove_blank_text=remove_blank_text,
+        remove_comments=False,
+    )
+
+
+def element_path(element: etree._Element) -> str:
+    """A readable XPath-like path for an element (``/cheddar/tasks/periodic_task[2]``)."""
+    tree = element.getroottree()
+    try:
+        path = tree.getpath(element)
+    except ValueError:
+        return element.tag if isinstance(element.tag, str) else "?"
+    # Make namespaced steps readable: {uri}name -> prefix:name
+    return path
+
+
+def parse_xml_bytes(data: bytes, filename: str, *, allow_doctype: bool = False) -> etree._ElementTree:
+    """Parse ``data`` with the hardened parser; errors become located :class:`ImportFormatError`.
+
+    A DOCTYPE that declares entities is refused (entity-expansion bombs, external entities);
+    a plain DOCTYPE is refused too unless ``allow_doctype`` (Cheddar v2 files carry one).
+    """
+    if not data.strip():
+        raise ImportFormatError("the file is empty; expected an XML document", file=filename, line=1)
+    try:
+        tree = etree.ElementTree(etree.fromstring(data, safe_xml_parser()))
+    except etree.XMLSyntaxError as exc:
+        line, column = exc.position if exc.position else (None, None)
+        raise ImportFormatError(
+            f"malformed XML: {exc.msg}", file=filename, line=line, column=column
+        ) from None
+    docinfo = tree.docinfo
+    if docinfo.doctype:
+        internal = docinfo.internalDTD
+        entities = [e.name for e in internal.iterentities()] if internal is not None else []
+        if entities:
+            problem = f"declares entities ({', '.join(entities[:5])})"
+        elif docinfo.system_url:
+            problem = f"refers to an external DTD ({docinfo.system_url})"
+        elif not allow_doctype:
+            problem = "is not expected here"
+        else:
+            problem = ""
+        if problem:
+            raise ImportFormatError(
+                f"the document's DOCTYPE {problem}; DTD entities and external DTDs are refused "
+                "(expected a plain XML document)",
+                Location(file=filename, line=1),
+            )
+    return tree
