@@ -95,7 +95,7 @@ def new(eclass: str | EClass, /, **values: Any) -> EObject:
         if feature.many:
             if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
                 raise ModelError(f"{cls.name}.{key} is many-valued; expected a list, got {value!r}")
-            getattr(obj, key).extend(_coerce(feature, v) for v in value)
+            getattr(obj, key).extend([_coerce(feature, v) for v in value])  # pyecore iterates twice
         else:
             try:
                 setattr(obj, key, _coerce(feature, value))
