@@ -28,6 +28,7 @@ from pyecore.resources.json import JsonResource
 from pyecore.resources.xmi import XMIResource
 
 from rosaadl import metamodels
+from rosaadl.bulk import FastBuilder  # re-exported: bulk construction by feature name
 from rosaadl.errors import Location, ModelError, RosaadlError, ValidationError
 from rosaadl.fileio import atomic_write_bytes
 
@@ -109,124 +110,6 @@ def new(eclass: str | EClass, /, **values: Any) -> EObject:
 def is_a(obj: object, eclass: str | EClass) -> bool:
     """``isinstance`` against a metamodel class given by name."""
     return isinstance(obj, EObject) and isinstance(obj, eclass_of(eclass).python_class)
-
-
-# --------------------------------------------------------------------------- bulk construction
-
-
-class FastBuilder:
-    """Bulk construction for readers and the instantiator: the same objects as :func:`new`, with
-    about a quarter of pyecore's per-value overhead (no change notifications, no type checks).
-
-    The caller guarantees typed values: enum features take literal objects (:meth:`literal`),
-    data-typed features take Python values of the right type. Containment, ``eContainer()``,
-    ``eIsSet`` and saving behave exactly as for objects made with :func:`new` (tested).
-    """
-
-    def __init__(self) -> None:
-        self._features: dict[tuple[int, str], Any] = {}
-        self._classes: dict[str, EClass] = {}
-        self._literals: dict[tuple[str, str], Any] = {}
-
-    def eclass(self, name: str) -> EClass:
-        cls = self._classes.get(name)
-        if cls is None:
-            cls = eclass_of(name)
-            if cls.abstract:
-                raise ModelError(f"{cls.name} is abstract; use one of its subclasses")
-            self._classes[name] = cls
-        return cls
-
-    def feature(self, eclass: EClass, name: str):
-        key = (id(eclass), name)
-        feature = self._features.get(key)
-        if feature is None:
-            feature = eclass.findEStructuralFeature(name)
-            if feature is None:
-                allowed = ", ".join(sorted(f.name for f in eclass.eAllStructuralFeatures()))
-                raise ModelError(f"{eclass.name} has no feature {name!r} (expected one of: {allowed})")
-            self._features[key] = feature
-        return feature
-
-    def literal(self, enum_name: str, text: str):
-        """The literal object of enumeration ``enum_name`` for a name or AADL spelling."""
-        key = (enum_name, text)
-        literal = self._literals.get(key)
-        if literal is None:
-            enum = metamodels.load().aadl.getEClassifier(
-                enum_name
-            ) or metamodels.load().rosmod.getEClassifier(enum_name)
-            if not isinstance(enum, EEnum):
-                raise ModelError(f"no enumeration {enum_name!r}")
-            literal = enum.from_string(text)
-            self._literals[key] = literal
-        return literal
-
-    def make(self, class_name: str, /, **values: Any) -> EObject:
-        """Create an object; single-valued features only (use :meth:`add` for lists)."""
-        from pyecore.valuecontainer import EValue
-
-        eclass = self.eclass(class_name)
-        pyclass = eclass.python_class
-        obj = pyclass.__new__(pyclass)
-        store = obj.__dict__
-        isset = obj._isset
-        for name, value in values.items():
-            if value is None:
-                continue
-            feature = self.feature(eclass, name)
-            if feature.many:
-                raise ModelError(f"{eclass.name}.{name} is many-valued; use FastBuilder.add")
-            holder = EValue.__new__(EValue)
-            holder.owner = obj
-            holder.feature = feature
-            is_ref = feature.is_reference
-            holder.is_ref = is_ref
-            holder.is_cont = is_ref and feature.containment
-            holder.generic_type = None
-            holder._value = value
-            store[feature._name] = holder
-            isset[feature] = None
-            if is_ref:
-                if holder.is_cont:
-                    value._container = obj
-                    value._containment_feature = feature
-                else:
-                    value._inverse_rels.add((obj, feature))
-        return obj
-
-    def add(self, owner: EObject, name: str, *children: Any) -> None:
-        """Append to a many-valued feature (containment, reference or attribute)."""
-        from pyecore.valuecontainer import ECollection
-
-        feature = self.feature(owner.eClass, name)
-        if not feature.many:
-            raise ModelError(f"{owner.eClass.name}.{name} is single-valued; use FastBuilder.make")
-        store = owner.__dict__
-        collection = store.get(feature._name)
-        if collection is None:
-            collection = ECollection.create(owner, feature)
-            store[feature._name] = collection
-        base_add = _base_add(collection)
-        containment = feature.is_reference and feature.containment
-        reference = feature.is_reference and not containment
-        for child in children:
-            base_add(collection, child)
-            if containment:
-                child._container = owner
-                child._containment_feature = feature
-            elif reference:
-                child._inverse_rels.add((owner, feature))
-        owner._isset[feature] = None
-
-
-def _base_add(collection):
-    """The storage-level append of a pyecore collection (bypassing notification and checks)."""
-    from pyecore.ordered_set_patch import ordered_set
-
-    if isinstance(collection, ordered_set.OrderedSet):
-        return ordered_set.OrderedSet.add
-    return list.append
 
 
 # --------------------------------------------------------------------------- navigation
@@ -725,3 +608,4 @@ def _is_attr(feature) -> bool:
 
 def model_equal(a: EObject, b: EObject) -> bool:
     return not model_differences(a, b)
+

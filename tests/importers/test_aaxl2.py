@@ -818,7 +818,7 @@ def test_generated_benchmark_file_imports_with_the_expected_count(tmp_path: Path
 def test_gc_is_restored_and_foreign_frozen_objects_are_left_alone() -> None:
     import gc
 
-    from rosaadl.importers.aaxl2 import gc_paused
+    from rosaadl.bulk import gc_paused
 
     assert gc.isenabled()
     loads_aaxl2(GOOD, "good.aaxl2")

@@ -1,0 +1,343 @@
+"""Bulk construction of model objects, for the readers and the instantiator.
+
+pyecore spends most of an object's creation on change notifications, type checks and a
+process-wide registry of every object; a reader that makes tens of thousands of new,
+unobserved objects needs none of that. :class:`FastFactory` fills pyecore's own state directly
+(value holders, ``_isset``, containers, inverse references), so the objects behave exactly like
+ones made with :func:`rosaadl.model.new` (saving, setters, ``delete()``; tested).
+:class:`FastBuilder` is the same by feature *name*, for code that is not a hot loop's inner
+body. :func:`gc_paused` keeps the cyclic garbage collector out of the way while building.
+"""
+
+from __future__ import annotations
+
+import gc
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from typing import Any
+
+from pyecore.ecore import EClass, EEnum, EObject
+from pyecore.innerutils import InternalSet
+from pyecore.ordered_set_patch import ordered_set
+from pyecore.valuecontainer import EBag, EList, EOrderedSet, ESet, EValue
+
+from rosaadl import metamodels
+from rosaadl.errors import ModelError
+
+__all__ = ["FeatureSlot", "FastFactory", "FastBuilder", "gc_paused"]
+
+OrderedSet = ordered_set.OrderedSet
+
+
+_object_new = object.__new__
+_evalue_new = EValue.__new__
+# pyecore's ordered sets are ``ordered_set.OrderedSet`` subclasses holding ``items`` and ``map``
+# (pyecore's own patches of that class rely on both); fill them directly when that holds.
+_probe = OrderedSet()
+_ORDERED_SET_FIELDS = isinstance(getattr(_probe, "items", None), list) and isinstance(
+    getattr(_probe, "map", None), dict
+)
+del _probe
+
+
+class FeatureSlot:
+    """A structural feature with what :class:`FastFactory` needs to know about it, looked up once."""
+
+    __slots__ = ("feature", "name", "is_ref", "containment", "many", "collection", "target")
+
+    def __init__(self, feature) -> None:
+        self.feature = feature
+        self.name = feature.name
+        self.is_ref = bool(feature.is_reference)
+        self.containment = bool(self.is_ref and feature.containment)
+        self.many = bool(feature.many)
+        self.collection = None
+        if self.many:
+            if feature.derived:
+                raise TypeError(f"{feature.name} is derived; it cannot be filled")
+            if feature.ordered and feature.unique:
+                self.collection = EOrderedSet
+            elif feature.ordered:
+                self.collection = EList
+            elif feature.unique:
+                self.collection = ESet
+            else:
+                self.collection = EBag
+        etype = feature.eType
+        self.target = etype.python_class if self.is_ref else None
+
+
+class FastFactory:
+    """Creates and fills pyecore objects of our metamodels without per-call overhead.
+
+    The objects behave exactly like ones made through the normal constructor and setters
+    (reading, setting, containment, saving, ``delete()``): every set feature has pyecore's
+    value holder (``EValue`` or collection) and is recorded in ``_isset`` (what pyecore
+    saves), contained objects know their container and containment feature, and referenced
+    objects record the inverse reference pyecore keeps for ``delete()``. What is skipped is
+    what a new, unobserved object does not need: notifications (no listener can be attached
+    yet), feature lookups by name (done once, in :class:`FeatureSlot`), the type check of
+    each value (the caller passes values of the right type), and the entry in pyecore's
+    debugging registry of all objects (see :meth:`new`). The garbage collector is best paused
+    while many objects are made (every pyecore object is part of a reference cycle): see
+    :func:`gc_paused`.
+    """
+
+    __slots__ = ("_slots",)
+
+    def __init__(self) -> None:
+        self._slots: dict[tuple[int, str], FeatureSlot] = {}
+
+    def slot(self, eclass: EClass, name: str) -> FeatureSlot:
+        key = (id(eclass), name)
+        found = self._slots.get(key)
+        if found is None:
+            feature = eclass.findEStructuralFeature(name)
+            if feature is None:
+                raise KeyError(f"{eclass.name} has no feature {name}")
+            found = self._slots[key] = FeatureSlot(feature)
+        return found
+
+    @staticmethod
+    def new(cls: type) -> EObject:
+        """A new object of pyecore class ``cls`` (``eclass.python_class``), with no feature set.
+
+        The state is exactly what ``EObject.__new__`` sets, except that the object is not added
+        to pyecore's process-wide weak registry of every object ever made (what the debugging
+        helper ``allInstances()`` iterates): that registry costs as much as the object itself
+        and nothing in rosaadl reads it. :meth:`register` adds objects to it when wanted.
+        """
+        obj = _object_new(cls)
+        obj.__dict__ = {
+            "_internal_id": None,
+            "_isset": InternalSet(),
+            "_container": None,
+            "_containment_feature": None,
+            "_eresource": None,
+            "listeners": [],
+            "_eternal_listener": [],
+            "_inverse_rels": set(),
+            "_staticEClass": False,
+            "dyn_inst": obj,
+        }
+        return obj
+
+    @staticmethod
+    def register(objects: Iterable[EObject]) -> None:
+        """Add objects made by :meth:`new` to pyecore's ``allInstances()`` registry."""
+        for obj in objects:
+            type(obj)._instances.add(obj)
+
+    @staticmethod
+    def set_value(obj: EObject, slot: FeatureSlot, value: Any) -> None:
+        """Set a single-valued attribute, or a non-containment reference to ``value``."""
+        ev = _evalue_new(EValue)
+        ev.__dict__ = {
+            "owner": obj,
+            "feature": slot.feature,
+            "is_ref": slot.is_ref,
+            "is_cont": False,
+            "generic_type": None,
+            "_value": value,
+        }
+        d = obj.__dict__
+        d[slot.name] = ev
+        d["_isset"][slot.feature] = None
+        if slot.is_ref and value is not None:
+            value.__dict__["_inverse_rels"].add((obj, slot.feature))
+
+    @staticmethod
+    def set_child(obj: EObject, slot: FeatureSlot, child: EObject) -> None:
+        """Set a single-valued containment reference."""
+        feature = slot.feature
+        ev = _evalue_new(EValue)
+        ev.__dict__ = {
+            "owner": obj,
+            "feature": feature,
+            "is_ref": True,
+            "is_cont": True,
+            "generic_type": None,
+            "_value": child,
+        }
+        d = obj.__dict__
+        d[slot.name] = ev
+        d["_isset"][feature] = None
+        cd = child.__dict__
+        cd["_container"] = obj
+        cd["_containment_feature"] = feature
+        cd["_inverse_rels"].add((obj, feature))
+
+    @staticmethod
+    def set_many(obj: EObject, slot: FeatureSlot, values: list) -> None:
+        """Set a many-valued feature (attribute, reference or containment) to the list ``values``."""
+        feature = slot.feature
+        cls = slot.collection
+        if cls is EOrderedSet and _ORDERED_SET_FIELDS:
+            collection = EOrderedSet.__new__(EOrderedSet)
+            index = {}
+            items = []
+            for value in values:
+                if value not in index:
+                    index[value] = len(items)
+                    items.append(value)
+            collection.__dict__ = {
+                "owner": obj,
+                "feature": feature,
+                "is_ref": slot.is_ref,
+                "is_cont": slot.containment,
+                "generic_type": None,
+                "_orderedset_update": False,
+                "items": items,
+                "map": index,
+            }
+        else:
+            collection = cls(obj, feature)
+            if isinstance(collection, OrderedSet):
+                add = OrderedSet.add
+                for value in values:
+                    add(collection, value)
+            else:
+                list.extend(collection, values)
+        d = obj.__dict__
+        d[slot.name] = collection
+        d["_isset"][feature] = None
+        if slot.is_ref:
+            couple = (obj, feature)
+            if slot.containment:
+                for child in values:
+                    cd = child.__dict__
+                    cd["_container"] = obj
+                    cd["_containment_feature"] = feature
+                    cd["_inverse_rels"].add(couple)
+            else:
+                for target in values:
+                    target.__dict__["_inverse_rels"].add(couple)
+
+    @staticmethod
+    def items(collection) -> Any:
+        """The stored items of a pyecore collection, indexable without pyecore's overhead."""
+        if type(collection) is EOrderedSet and _ORDERED_SET_FIELDS:
+            return collection.items
+        return collection
+
+    @staticmethod
+    def extend(obj: EObject, slot: FeatureSlot, collection, values: Iterable[Any]) -> None:
+        """Append ``values`` to an existing collection of ``obj`` made by :meth:`set_many`."""
+        feature = slot.feature
+        if isinstance(collection, OrderedSet):
+            add = OrderedSet.add
+            for value in values:
+                add(collection, value)
+        else:
+            list.extend(collection, values)
+        obj.__dict__["_isset"][feature] = None
+        if slot.is_ref:
+            couple = (obj, feature)
+            for value in values:
+                vd = value.__dict__
+                if slot.containment:
+                    vd["_container"] = obj
+                    vd["_containment_feature"] = feature
+                vd["_inverse_rels"].add(couple)
+
+
+@contextmanager
+def gc_paused(*, promote: bool = True) -> Iterator[None]:
+    """Pause the cyclic garbage collector while a model is built, and restore it afterwards.
+
+    Every pyecore object is part of a reference cycle, so building tens of thousands of them
+    with the collector running triggers collections over an ever larger heap, and re-enabling
+    it after the build makes the next allocation traverse all of them at once (as long as the
+    build itself). The model is long-lived data: with ``promote`` (the default), a successful
+    build hands everything the collector tracks to its oldest generation (``gc.freeze()`` then
+    ``gc.unfreeze()``), where the next full collection will see it like any long-lived data,
+    instead of first traversing it as young objects. The only other objects so promoted are
+    the few the young generations held (at most the collector's young thresholds), whose
+    collection, if they are garbage, waits for that full collection. Nothing is promoted when
+    the build fails, when the collector was already disabled, or when the process has frozen
+    objects of its own (``gc.get_freeze_count()``), which an unfreeze would release.
+    """
+    was_enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    except BaseException:
+        if was_enabled:
+            gc.enable()
+        raise
+    if was_enabled:
+        if promote and gc.get_freeze_count() == 0:
+            gc.freeze()
+            gc.unfreeze()
+        gc.enable()
+
+
+class FastBuilder:
+    """:class:`FastFactory` by class and feature *name*: ``make("Feature", name=..., category=...)``,
+    ``add(owner, "features", child, ...)``.
+
+    Values must already be typed: enum features take literal objects (:meth:`literal`),
+    data-typed features Python values of the right type. Unknown features and abstract classes
+    are refused with a :class:`ModelError`.
+    """
+
+    def __init__(self) -> None:
+        self.factory = FastFactory()
+        self._classes: dict[str, EClass] = {}
+        self._literals: dict[tuple[str, str], Any] = {}
+
+    def eclass(self, name: str) -> EClass:
+        cls = self._classes.get(name)
+        if cls is None:
+            cls = metamodels.load().eclass(name)
+            if cls.abstract:
+                raise ModelError(f"{cls.name} is abstract; use one of its subclasses")
+            self._classes[name] = cls
+        return cls
+
+    def slot(self, eclass: EClass, name: str) -> FeatureSlot:
+        try:
+            return self.factory.slot(eclass, name)
+        except KeyError:
+            allowed = ", ".join(sorted(f.name for f in eclass.eAllStructuralFeatures()))
+            raise ModelError(f"{eclass.name} has no feature {name!r} (expected one of: {allowed})") from None
+
+    def literal(self, enum_name: str, text: str):
+        """The literal object of enumeration ``enum_name`` for a name or AADL spelling."""
+        key = (enum_name, text)
+        literal = self._literals.get(key)
+        if literal is None:
+            mm = metamodels.load()
+            enum = mm.aadl.getEClassifier(enum_name) or mm.rosmod.getEClassifier(enum_name)
+            if not isinstance(enum, EEnum):
+                raise ModelError(f"no enumeration {enum_name!r}")
+            literal = enum.from_string(text)
+            self._literals[key] = literal
+        return literal
+
+    def make(self, class_name: str, /, **values: Any) -> EObject:
+        """Create an object with single-valued features set (use :meth:`add` for lists)."""
+        eclass = self.eclass(class_name)
+        obj = FastFactory.new(eclass.python_class)
+        for name, value in values.items():
+            if value is None:
+                continue
+            slot = self.slot(eclass, name)
+            if slot.many:
+                raise ModelError(f"{eclass.name}.{name} is many-valued; use FastBuilder.add")
+            if slot.containment:
+                FastFactory.set_child(obj, slot, value)
+            else:
+                FastFactory.set_value(obj, slot, value)
+        return obj
+
+    def add(self, owner: EObject, name: str, *children: Any) -> None:
+        """Append to a many-valued feature (containment, reference or attribute)."""
+        slot = self.slot(owner.eClass, name)
+        if not slot.many:
+            raise ModelError(f"{owner.eClass.name}.{name} is single-valued; use FastBuilder.make")
+        existing = owner.__dict__.get(slot.name)
+        if existing is None:
+            FastFactory.set_many(owner, slot, list(children))
+        else:
+            FastFactory.extend(owner, slot, existing, children)
