@@ -14,6 +14,7 @@ Code outside ``metamodels/`` uses these helpers instead of pyecore's reflective 
 
 from __future__ import annotations
 
+import functools
 import io
 import json
 import os
@@ -115,17 +116,26 @@ def is_a(obj: object, eclass: str | EClass) -> bool:
 # --------------------------------------------------------------------------- navigation
 
 
+@functools.cache
+def _containments(eclass: EClass) -> tuple[tuple[str, bool], ...]:
+    """(name, many) of the containment references of a class, in feature order (metadata only)."""
+    return tuple((ref.name, bool(ref.many)) for ref in eclass.eAllReferences() if ref.containment)
+
+
 def children(obj: EObject) -> list[EObject]:
     """Direct contained objects, in feature order then list order (deterministic)."""
     out: list[EObject] = []
-    for ref in obj.eClass.eAllReferences():
-        if not ref.containment:
+    store = obj.__dict__
+    for name, many in _containments(obj.eClass):
+        holder = store.get(name)  # pyecore keeps each set feature's value holder in the instance dict
+        if holder is None:
             continue
-        value = obj.eGet(ref)
-        if ref.many:
-            out.extend(value)
-        elif value is not None:
-            out.append(value)
+        if many:
+            out.extend(holder)
+        else:
+            value = holder._value
+            if value is not None:
+                out.append(value)
     return out
 
 
@@ -566,15 +576,32 @@ def model_differences(a: EObject, b: EObject, *, ignore: Iterable[str] = ("line"
             obj = obj.eContainer()
         return "/".join(reversed(parts))
 
+    plans: dict[int, list] = {}
+
+    def plan(eclass: EClass) -> list:
+        found = plans.get(id(eclass))
+        if found is None:
+            found = [
+                (f, f.name, bool(f.many), f.get_default_value() if not f.many else None)
+                for f in eclass.eAllStructuralFeatures()
+                if f.name not in skip and not f.transient
+            ]
+            plans[id(eclass)] = found
+        return found
+
+    def value(obj: EObject, name: str, many: bool, default: Any) -> Any:
+        holder = obj.__dict__.get(name)  # pyecore's value holder for a feature that was touched
+        if holder is None:
+            return () if many else default
+        return holder if many else holder._value
+
     def compare(x: EObject, y: EObject) -> None:
-        if x.eClass.name != y.eClass.name:
+        if x.eClass is not y.eClass and x.eClass.name != y.eClass.name:
             diffs.append(f"{where(x)}: class {x.eClass.name} != {y.eClass.name}")
             return
-        for feature in x.eClass.eAllStructuralFeatures():
-            if feature.name in skip or feature.transient:
-                continue
-            vx, vy = x.eGet(feature), y.eGet(feature)
-            if hasattr(feature, "containment") and feature.eType is not None and not _is_attr(feature):
+        for feature, name, many, default in plan(x.eClass):
+            vx, vy = value(x, name, many, default), value(y, name, many, default)
+            if feature.is_reference:
                 if feature.containment:
                     lx = list(vx) if feature.many else [vx] if vx is not None else []
                     ly = list(vy) if feature.many else [vy] if vy is not None else []
@@ -598,12 +625,6 @@ def model_differences(a: EObject, b: EObject, *, ignore: Iterable[str] = ("line"
 
     compare(a, b)
     return diffs
-
-
-def _is_attr(feature) -> bool:
-    from pyecore.ecore import EAttribute
-
-    return isinstance(feature, EAttribute)
 
 
 def model_equal(a: EObject, b: EObject) -> bool:
