@@ -32,7 +32,8 @@ __all__ = ["cli", "main"]
 def cli(ctx: click.Context, fmt: str, debug: bool, verbose: int, quiet: int) -> None:
     """rosaadl: ROSMOD, AADL, OSATE, Cheddar and ROS 2 from one command line."""
     ctx.obj = Options(format=fmt, debug=debug, verbosity=verbose - quiet)
-    level = logging.WARNING - 10 * (verbose - quiet)
+    # warnings reach the user through each verb's report; -v shows the library log as well
+    level = logging.ERROR - 10 * (verbose - quiet)
     logging.basicConfig(
         level=max(logging.DEBUG, min(logging.CRITICAL, level)),
         stream=sys.stderr,

@@ -1,4 +1,4 @@
-"""``rosaadl check FILE...``: validate input files with the reader that knows them."""
+"""``rosaadl check INPUT...``: read inputs with the reader that knows them and report every problem."""
 
 from __future__ import annotations
 
@@ -8,31 +8,28 @@ from pathlib import Path
 import click
 
 from rosaadl.cli.common import Options, Report, pass_options
-from rosaadl.errors import Diagnostic, RosaadlError, UsageError
 from rosaadl.formats import check_file
 
 __all__ = ["command"]
 
 
 @click.command("check")
-@click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--strict", is_flag=True, help="Treat what readers tolerate (unknown elements...) as errors.")
 @pass_options
-def command(options: Options, files: tuple[Path, ...]) -> None:
-    """Validate model files (our XMI/JSON models; more formats as readers land)."""
+def command(options: Options, inputs: tuple[Path, ...], strict: bool) -> None:
+    """Validate inputs: rosaadl models (.xmi/.json), AADL text, OSATE .aaxl2, Cheddar XML,
+    ROSMOD projects (folders, .rml, .webgmex)."""
     report = Report()
     checked = []
-    for path in files:
-        if not path.exists():
-            raise UsageError("no such file", file=str(path))
-        findings = check_file(path)
-        for finding in findings:
-            severity = finding.severity if isinstance(finding, Diagnostic) else "error"
-            (report.warn if severity == "warning" else report.error)(finding)
-        errors = sum(1 for f in findings if not (isinstance(f, Diagnostic) and f.severity != "error"))
-        checked.append({"file": str(path), "errors": errors})
-        report.say(f"{path}: {'ok' if errors == 0 else f'{errors} error(s)'}")
+    for path in inputs:
+        errors, warnings = check_file(path, strict=strict)
+        for error in errors:
+            report.error(error)
+        for warning in warnings:
+            report.warn(warning)
+        checked.append({"file": str(path), "errors": len(errors), "warnings": len(warnings)})
+        status = "ok" if not errors else f"{len(errors)} error(s)"
+        report.say(f"{path}: {status}" + (f", {len(warnings)} warning(s)" if warnings else ""))
     report.data["files"] = checked
     sys.exit(report.emit(options))
-
-
-_ = RosaadlError  # re-exported for type checkers of verb modules
