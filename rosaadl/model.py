@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from lxml import etree
-from pyecore.ecore import EClass, EEnum, EObject
+from pyecore.ecore import EClass, EEnum, EEnumLiteral, EObject
 from pyecore.resources import URI
 from pyecore.resources.json import JsonResource
 from pyecore.resources.xmi import XMIResource
@@ -97,7 +97,9 @@ def new(eclass: str | EClass, /, **values: Any) -> EObject:
         if feature.many:
             if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
                 raise ModelError(f"{cls.name}.{key} is many-valued; expected a list, got {value!r}")
-            getattr(obj, key).extend([_coerce(feature, v) for v in value])  # pyecore iterates twice
+            items = [_coerce(feature, v) for v in value]  # a list: pyecore's EList iterates twice
+            if items:
+                getattr(obj, key).extend(items)
         else:
             try:
                 setattr(obj, key, _coerce(feature, value))
@@ -377,7 +379,7 @@ def _canonical_feature_order(root: EObject) -> None:
     order_cache: dict[int, dict[object, int]] = {}
     for obj in walk(root):
         isset = obj._isset
-        if len(isset) < 2:
+        if not isset:
             continue
         eclass = obj.eClass
         order = order_cache.get(id(eclass))
@@ -386,7 +388,11 @@ def _canonical_feature_order(root: EObject) -> None:
             order_cache[id(eclass)] = order
         ordered = sorted(isset, key=lambda f: order.get(f, len(order)))
         isset.clear()
+        store = obj.__dict__
         for feature in ordered:
+            # an emptied list stays "set" in pyecore, which then writes its repr ("EOrderedSet()")
+            if feature.many and not len(store.get(feature.name, ())):
+                continue
             isset[feature] = None
 
 
@@ -557,9 +563,10 @@ def load(path: str | os.PathLike[str], fmt: str | None = None) -> EObject:
 
 
 def _value_repr(value: Any) -> Any:
-    if isinstance(value, EObject):
-        return None  # references compared by path separately
-    return getattr(value, "name", value) if not isinstance(value, (str, int, float, bool)) else value
+    """An attribute value as a comparable Python value (enum literals by name)."""
+    if isinstance(value, EEnumLiteral):
+        return value.name
+    return value  # numbers (Decimal by value: 0.0 == 0), strings, booleans
 
 
 def model_differences(a: EObject, b: EObject, *, ignore: Iterable[str] = ("line", "column")) -> list[str]:

@@ -165,3 +165,13 @@ def test_model_files_by_extension(tmp_path) -> None:
         path = model.save(ws, tmp_path / name)
         assert model.model_equal(model.load(path), ws)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ws.json", "ws.xmi"]  # no temp files left
+
+
+def test_model_differences_sees_every_kind_of_attribute() -> None:
+    a = model.new("Feature", name="f", category="event data port", direction="out")
+    for change in ({"category": "data port"}, {"direction": "in out"}, {"name": "g"}, {"refined": True}):
+        b = model.new("Feature", **{"name": "f", "category": "event data port", "direction": "out", **change})
+        assert model.model_differences(a, b), change
+    timer = model.new("rosmod.Timer", name="t", period=__import__("decimal").Decimal("0.5"))
+    other = model.new("rosmod.Timer", name="t", period=__import__("decimal").Decimal("0.25"))
+    assert model.model_differences(timer, other)
