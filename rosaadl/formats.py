@@ -168,9 +168,10 @@ class _Collected(RosaadlError):
 
 def expand_errors(exc: RosaadlError) -> list[RosaadlError | Diagnostic]:
     """The individual located errors behind ``exc`` (readers that collect raise them together)."""
-    inner = getattr(exc, "errors", None)
-    if isinstance(inner, (list, tuple)) and inner:
-        return list(inner)
+    for attribute in ("errors", "diagnostics"):  # readers that collect keep the list under one of these
+        inner = getattr(exc, attribute, None)
+        if isinstance(inner, (list, tuple)) and inner:
+            return list(inner)
     return [exc]
 
 

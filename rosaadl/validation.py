@@ -9,6 +9,18 @@ from rosaadl.errors import Diagnostic, Location
 
 __all__ = ["validate"]
 
+# Elements AADL requires a name for (property types, connections and modal values may be anonymous)
+_NAME_REQUIRED = (
+    "aadl.ModelUnit",
+    "aadl.Classifier",
+    "aadl.Feature",
+    "aadl.Subcomponent",
+    "aadl.Property",
+    "aadl.PropertyConstant",
+    "aadl.ComponentInstance",
+    "aadl.FeatureInstance",
+)
+
 
 def _where(obj: EObject) -> str:
     from rosaadl.transforms.trace import element_key
@@ -48,6 +60,6 @@ def validate(root: EObject, filename: str | None = None) -> list[Diagnostic]:
                             report(
                                 obj, f"{eclass.name}.{feature.name} refers to an object that does not exist"
                             )
-        if model.is_a(obj, "aadl.NamedElement") and not obj.name:
+        if any(model.is_a(obj, cls) for cls in _NAME_REQUIRED) and not obj.name:
             report(obj, f"{eclass.name} has no name (expected an AADL identifier)")
     return problems

@@ -1,16 +1,67 @@
-"""``rosaadl analyze``: registered now, implemented by the analyses issue."""
+"""``rosaadl analyze INPUTS... --root Pkg::Sys.impl``: CPU/MIPS, budgets, bus load, schedulability,
+simulation, latency and deployment search on a deployed system."""
 
 from __future__ import annotations
 
+import json
+import sys
+from pathlib import Path
+
 import click
 
-from rosaadl.cli.common import not_yet
+from rosaadl.cli.common import EXIT_ERRORS, EXIT_OK, Options, pass_options
+from rosaadl.cli.inputs import choose_instance, read_aadl_inputs
 
 __all__ = ["command"]
 
 
-@click.command("analyze", context_settings={"ignore_unknown_options": True})
-@click.argument("args", nargs=-1, type=click.UNPROCESSED)
-def command(args: tuple[str, ...]) -> None:
-    """Not implemented yet: comes with the analyses issue."""
-    not_yet("analyze", "comes with the analyses issue")
+@click.command("analyze")
+@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--root", help="The system implementation to instantiate, or the instance to take.")
+@click.option(
+    "--only",
+    help="Comma-separated analyses: cpu,budget,bus,sched,sim,latency,deploy (default: all but deploy).",
+)
+@click.option(
+    "-o", "--output", "out", type=click.Path(path_type=Path), help="Folder for the OSATE-style CSV reports."
+)
+@click.option(
+    "--time-unit",
+    type=click.Choice(["us", "ms"]),
+    default="us",
+    show_default=True,
+    help="What Cheddar's plain integer times are (Cheddar inputs).",
+)
+@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
+@pass_options
+def command(
+    options: Options,
+    inputs: tuple[Path, ...],
+    root: str | None,
+    only: str | None,
+    out: Path | None,
+    time_unit: str,
+    lenient: bool,
+) -> None:
+    """Analyse a deployment; exit 1 when an analysis finds an overload or a missed deadline.
+    Inputs may be AADL text, a rosaadl model, an OSATE .aaxl2 or a Cheddar file."""
+    from rosaadl.analysis.report import parse_only, run_analyses
+
+    selected = parse_only(only)  # a bad --only is a usage error before any reading
+    loaded = read_aadl_inputs(list(inputs), time_unit=time_unit)
+    instance = choose_instance(loaded, root, lenient=lenient)
+    options.progress(f"analysing {instance.name}: {', '.join(selected)}")
+    report = run_analyses(instance, selected)
+    written = report.write_csv(out) if out is not None else []
+    if options.format == "json":
+        document = json.loads(report.to_json())
+        reading = [w.as_dict() for w in loaded.warnings if w.severity == "warning"]
+        document["warnings"] = reading + document.get("warnings", [])
+        if written:
+            document["csv"] = [str(p) for p in written]
+        click.echo(json.dumps(document, indent=2))
+    else:
+        click.echo(report.text())
+        for path in written:
+            options.progress(f"wrote {path}")
+    sys.exit(EXIT_OK if report.ok else EXIT_ERRORS)
