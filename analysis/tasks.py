@@ -731,7 +731,9 @@ class _Extractor:
             self.diag("error", f"{dispatch.value} thread has no Period", obj)
             return None
         if values["Compute_Execution_Time"] is None:
-            self.diag("error", "thread has no Compute_Execution_Time", obj)
+            # a thread the profile did not measure (a ROS spinner, a main thread) has no
+            # execution to schedule: it is left out of the task set, and said so
+            self.diag("warning", "thread has no Compute_Execution_Time; left out of the task set", obj)
             return None
         capacity = self.time(obj, "Compute_Execution_Time", values["Compute_Execution_Time"])
         if capacity is None:
@@ -929,7 +931,7 @@ def taskset_from_instance(root: Any, *, time_unit: str = "us") -> TaskSet:
     """
     if root is None or not hasattr(root, "eClass"):
         raise ModelError(f"expected an instance model, got {type(root).__name__}")
-    if hasattr(root, "instances") and not hasattr(root, "componentInstances"):
+    if root.eClass.name == "AadlModel":
         if not root.instances:
             raise ModelError("the model has no system instance")
         root = root.instances[0]
