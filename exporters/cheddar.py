@@ -687,7 +687,14 @@ class _Collector:
         else:
             space_name = self.space_for(thread, cpu).name
             if not props.has("Timing_Properties::Compute_Execution_Time"):
-                self.problem(thread, "Compute_Execution_Time is not set (Cheddar needs a capacity)")
+                # a thread with no execution time (a ROS spinner the profile did not measure) has
+                # nothing for Cheddar to schedule: it is left out, and said so
+                self.warn(
+                    thread,
+                    "not exported as a task: Compute_Execution_Time is not set, so Cheddar "
+                    "would have no capacity for it",
+                )
+                return
             if task_type in ("PERIODIC_TYPE", "SPORADIC_TYPE") and not props.has("Timing_Properties::Period"):
                 self.problem(thread, "Period is not set (a periodic or sporadic task needs one)")
         entity = _Task(

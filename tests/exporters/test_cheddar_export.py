@@ -582,7 +582,7 @@ def test_cheddar2_export_of_an_instance() -> None:
         dumps_cheddar(workspace, cheddar_format=2)
 
 
-def test_unbound_threads_and_missing_capacity_are_reported_together() -> None:
+def test_unbound_threads_are_errors_and_threads_without_capacity_are_left_out() -> None:
     workspace, threads = _deployment()
     for association in list(threads["log"].ownedPropertyAssociations):
         if association.property.endswith("Actual_Processor_Binding"):
@@ -595,7 +595,17 @@ def test_unbound_threads_and_missing_capacity_are_reported_together() -> None:
         dumps_cheddar(workspace)
     message = caught.value.message
     assert "robot_impl_Instance.sw.tracker.log: the thread is bound to no processor" in message
-    assert "robot_impl_Instance.sw.tracker.track: Compute_Execution_Time is not set" in message
+    assert "tracker.track" not in message
+    # bound again, the export succeeds; the thread with no execution time is left out, with a warning
+    workspace, threads = _deployment()
+    for association in list(threads["track"].ownedPropertyAssociations):
+        if association.property.endswith("Compute_Execution_Time"):
+            threads["track"].ownedPropertyAssociations.remove(association)
+    notes: list = []
+    document = dumps_cheddar(workspace, diagnostics=notes)
+    assert b"tracker.track" not in document and b"tracker.log" in document
+    (note,) = [n for n in notes if "Compute_Execution_Time" in n.message]
+    assert note.severity == "warning" and note.location.path == "robot_impl_Instance.sw.tracker.track"
 
 
 def test_write_is_atomic_and_root_is_chosen(tmp_path: Path) -> None:
