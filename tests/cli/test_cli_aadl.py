@@ -22,8 +22,19 @@ def run(args: list[str], capsys) -> tuple[int, str, str]:
 
 def test_instantiate_writes_model_with_instance(tmp_path: Path, capsys) -> None:
     out = tmp_path / "tracking.xmi"
-    code, stdout, err = run(["--format", "json", "instantiate", str(SYSTEMS), "--root",
-                             "sys_tracking::tracking.impl", "-o", str(out)], capsys)
+    code, stdout, err = run(
+        [
+            "--format",
+            "json",
+            "instantiate",
+            str(SYSTEMS),
+            "--root",
+            "sys_tracking::tracking.impl",
+            "-o",
+            str(out),
+        ],
+        capsys,
+    )
     assert code == 0, err
     doc = json.loads(stdout)
     assert doc["ok"] and doc["instance"] == "tracking_impl_Instance" and doc["components"] > 20
@@ -49,14 +60,28 @@ def test_missing_input_and_empty_folder_are_usage_errors(tmp_path: Path, capsys)
     (tmp_path / "empty").mkdir()
     code, _, err = run(["analyze", str(tmp_path / "empty"), "--root", "a::b.i"], capsys)
     assert code == 2 and "neither a ROSMOD project nor .aadl files" in err
-    code, _, err = run(["analyze", str(SYSTEMS), "--root", "sys_tracking::tracking.impl", "--only", "cpu,nope"],
-                       capsys)
+    code, _, err = run(
+        ["analyze", str(SYSTEMS), "--root", "sys_tracking::tracking.impl", "--only", "cpu,nope"], capsys
+    )
     assert code == 2 and "unknown analysis nope" in err
 
 
 def test_analyze_reports_the_overloaded_core_and_exits_1(tmp_path: Path, capsys) -> None:
-    code, stdout, _ = run(["--format", "json", "analyze", str(SYSTEMS), "--root", "sys_tracking::tracking.impl",
-                           "--only", "cpu,bus", "-o", str(tmp_path / "csv")], capsys)
+    code, stdout, _ = run(
+        [
+            "--format",
+            "json",
+            "analyze",
+            str(SYSTEMS),
+            "--root",
+            "sys_tracking::tracking.impl",
+            "--only",
+            "cpu,bus",
+            "-o",
+            str(tmp_path / "csv"),
+        ],
+        capsys,
+    )
     assert code == 1
     doc = json.loads(stdout)
     assert doc["ok"] is False
@@ -68,15 +93,18 @@ def test_analyze_reports_the_overloaded_core_and_exits_1(tmp_path: Path, capsys)
 
 
 def test_analyze_rover_passes(capsys) -> None:
-    code, stdout, err = run(["analyze", str(SYSTEMS), "--root", "sys_rover::rover.impl", "--only", "cpu,sched"],
-                            capsys)
+    code, stdout, err = run(
+        ["analyze", str(SYSTEMS), "--root", "sys_rover::rover.impl", "--only", "cpu,sched"], capsys
+    )
     assert code == 0, stdout + err
 
 
 def test_export_cheddar_and_reimport(tmp_path: Path, capsys) -> None:
     target = tmp_path / "tracking.xmlv3"
-    code, _, err = run(["export", "cheddar", str(SYSTEMS), "--root", "sys_tracking::tracking.impl", "-o",
-                        str(target)], capsys)
+    code, _, err = run(
+        ["export", "cheddar", str(SYSTEMS), "--root", "sys_tracking::tracking.impl", "-o", str(target)],
+        capsys,
+    )
     assert code == 0, err
     assert "not exported as a task" in err  # threads without execution time are said to be left out
     code, _, err = run(["import", str(target), "-o", str(tmp_path / "back.json")], capsys)

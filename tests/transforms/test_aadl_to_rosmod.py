@@ -1,0 +1,476 @@
+"""AADL → ROSMOD (rosaadl.transforms.aadl_to_rosmod): the inverse of the convention for every corpus
+project, names from the trace, edits in the AADL, and the best-effort mapping of other models."""
+
+from __future__ import annotations
+
+import functools
+import importlib.util
+import logging
+from pathlib import Path
+
+import pytest
+
+from rosaadl import model
+from rosaadl.errors import Diagnostic, TransformationError
+from rosaadl.exporters.rosmod_text import write_project
+from rosaadl.importers import rosmod_text, rosmod_webgme
+from rosaadl.transforms import trace as tracing
+from rosaadl.transforms.aadl_to_rosmod import (
+    aadl_to_rosmod,
+    convert_aadl_files,
+    is_rosmod_convention,
+    top_level_systems,
+)
+from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+
+_WRITER = importlib.util.find_spec("rosaadl.exporters.aadl_text") is not None
+_READER = _WRITER and importlib.util.find_spec("rosaadl.importers.aadl_text") is not None
+_INSTANTIATE = importlib.util.find_spec("rosaadl.transforms.instantiate") is not None
+needs_reader = pytest.mark.skipif(
+    not _READER,
+    reason="the AADL text writer or reader (exporters/aadl_text, importers/aadl_text) has not landed",
+)
+needs_instantiate = pytest.mark.skipif(
+    not (_READER and _INSTANTIATE), reason="the AADL reader or the instantiator has not landed"
+)
+
+RML = """package nav
+{
+  component Planner : Base
+  {
+    publisher <nav/Goal> goal_pub;
+    subscriber <nav/Goal> goal_sub { priority = 60; deadline = 0.250; }
+    timer tick { period = 0.1; priority = 50; deadline = 0.05; }
+  }
+}
+"""
+RHW = """hardware board-1 { ip_address = "10.0.0.2"; arch = armv7l; }
+hardware laptop { ip_address = "localhost"; arch = x64; }
+"""
+RDP = """using lab-net;
+node planner_node
+{
+  properties { ref = "lab-net/board-1"; priority = 70; }
+  component_instance planner
+  {
+    properties { ref = "nav/Planner"; scheduling_scheme = PFIFO; logging { Is Periodic? = true; } }
+  }
+}
+"""
+FILES = {
+    "small.rosmod": "This is a ROSMOD Project",
+    "01-Software/nav.rml": RML,
+    "01-Software/msg/nav.Goal.msg": "float64 x\nfloat64 y\n",
+    "02-Hardware/lab-net.rhw": RHW,
+    "03-Deployment/field test.rdp": RDP,
+}
+
+
+def write_model(aadl, folder: Path):
+    from rosaadl.exporters.aadl_text import write_model as write
+
+    return write(aadl, folder)
+
+
+def write_files(folder: Path, files: dict[str, str]) -> Path:
+    for relative, text in files.items():
+        target = folder / relative
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(text, encoding="utf-8")
+    return folder
+
+
+@pytest.fixture
+def project(tmp_path):
+    return rosmod_text.read_project(write_files(tmp_path / "small", FILES))
+
+
+def through_text(project, folder: Path, edit=None):
+    """Convert, write the AADL, optionally edit the files, read them back (with the library)."""
+    from rosaadl.importers.aadl_text import read_files
+
+    result = rosmod_to_aadl(project)
+    write_model(result.model, folder)
+    if edit is not None:
+        edit(folder)
+    return result, read_files([folder])
+
+
+def strip_names(aadl) -> int:
+    """Remove every ROSMOD_Properties::Name but the project package's; how many were removed."""
+    removed = 0
+    for obj in list(model.walk(aadl)):
+        if obj.eClass.name != "PropertyAssociation" or obj.property != "ROSMOD_Properties::Name":
+            continue
+        owner = obj.eContainer()
+        if owner.eClass.name == "AadlPackage" and owner.name.endswith("_project"):
+            continue
+        owner.ownedPropertyAssociations.remove(obj)
+        removed += 1
+    return removed
+
+
+# --------------------------------------------------------------------------- the convention
+
+
+def test_in_memory_round_trip(project):
+    result = rosmod_to_aadl(project)
+    assert is_rosmod_convention(result.model)
+    back = aadl_to_rosmod(result.model)
+    assert model.model_differences(project, back) == []
+    timer = back.software.packages[0].components[0].timers[0]
+    assert str(timer.period) == "0.1" and timer.priority == 50
+    sub = back.software.packages[0].components[0].ports[1]
+    assert str(sub.deadline) == "0.250"  # as written, from Deadline_Seconds
+    node = back.deployments[0].nodes[0]
+    assert node.host is back.systems[0].hosts[0] and node.hostRef == "lab-net/board-1"
+    assert node.componentInstances[0].component is back.software.packages[0].components[0]
+
+
+@needs_reader
+def test_round_trip_through_aadl_text(project, tmp_path):
+    _, aadl = through_text(project, tmp_path)
+    warnings: list[Diagnostic] = []
+    back = aadl_to_rosmod(aadl, warnings=warnings)
+    assert model.model_differences(project, back) == []
+    assert warnings == []
+
+
+@needs_reader
+def test_the_trace_gives_the_names_back(project, tmp_path):
+    result, aadl = through_text(project, tmp_path)
+    trace_file = tracing.save_trace(result.trace, tmp_path / "small.trace")
+    assert strip_names(aadl) == 3  # lab-net, board-1 and 'field test'
+    without = aadl_to_rosmod(aadl)
+    assert {d.name for d in without.deployments} == {"field_test"}
+    assert {h.name for h in without.systems[0].hosts} == {"board_1", "laptop"}
+    with_trace = aadl_to_rosmod(aadl, trace=trace_file)
+    assert model.model_differences(project, with_trace) == []
+
+
+@needs_reader
+def test_edited_times_win_over_the_written_seconds(project, tmp_path):
+    def edit(folder):
+        nav = folder / "nav.aadl"
+        text = nav.read_text()
+        assert "Deadline => 250 ms;" in text and "Period => 100 ms;" in text
+        nav.write_text(
+            text.replace("Deadline => 250 ms;", "Deadline => 300 ms;").replace(
+                "Period => 100 ms;", "Period => 20 us;"
+            )
+        )
+
+    _, aadl = through_text(project, tmp_path, edit)
+    back = aadl_to_rosmod(aadl)
+    comp = back.software.packages[0].components[0]
+    assert str(comp.ports[1].deadline) == "0.3"  # the stale "0.250" is not used
+    assert str(comp.timers[0].period) == "0.00002"
+
+
+@needs_reader
+def test_elements_outside_the_convention_are_located_warnings(project, tmp_path):
+    def edit(folder):
+        dep = folder / "field_test_deployment.aadl"
+        text = dep.read_text()
+        dep.write_text(
+            text.replace(
+                "      ROSbus: virtual bus ros::ROSbus.impl;",
+                "      ROSbus: virtual bus ros::ROSbus.impl;\n      camera: device;",
+            )
+        )
+
+    _, aadl = through_text(project, tmp_path, edit)
+    warnings: list[Diagnostic] = []
+    back = aadl_to_rosmod(aadl, warnings=warnings)
+    assert [w.message for w in warnings] == [
+        "device camera of field_test.impl has no ROSMOD counterpart; skipped"
+    ]
+    location = warnings[0].location
+    assert location.file.endswith("field_test_deployment.aadl") and location.line
+    assert location.path == "field_test_deployment::field_test.impl.camera"
+    assert len(back.deployments[0].nodes) == 1
+
+
+def test_not_a_model_is_an_error(project):
+    with pytest.raises(TransformationError, match="expected an AADL model"):
+        aadl_to_rosmod(project)
+
+
+# --------------------------------------------------------------------------- the corpus
+
+CORPUS_PROJECTS = [
+    "textual-v0.3/agse",
+    "textual-v0.3/client-server",
+    "textual-v0.3/integration",
+    "textual-v0.3/isorc2016",
+    "textual-v0.3/ksp_rover_controller",
+    "textual-v0.3/long-running-operation",
+    "textual-v0.3/periodic-timers",
+    "textual-v0.3/publish-subscribe",
+    "textual-v0.3/sequential-leds",
+    "textual-v0.3/ten-components",
+    "textual-v0.3/three-components",
+    "textual-v0.3/timer",
+    "textual-v0.3/timer_example",
+    "textual-v0.3/trajectory-planner",
+    "textual-v0.3/uav",
+    "textual-v0.3/roscpp/ksp_rover_control",
+    "textual-v0.3/roscpp/ksp_stearwing_control",
+    "textual-v0.3/roscpp/pub_sub_cycle_example",
+    "textual-v0.3/roscpp/pub_sub_traffic_gen",
+    "textual-v0.3/roscpp/routing",
+    "textual-v0.3/roscpp/tg_test",
+    "legacy-v0.2/sample",
+    "legacy-v0.1/input.rosml",
+    "agse2015/agse_rosmod_project",
+    "agse2015/agse_rosmod_v3",
+]
+WEBGME_ARCHIVES = ["samples-2016-06-13_noTLC.webgmex", "samples-2018-05-19_noTLC.webgmex"]
+
+
+@functools.cache
+def webgme_projects(root: str, archive: str):
+    return rosmod_webgme.read_webgmex(Path(root) / "rosmod" / "webgme" / archive)
+
+
+@pytest.mark.parametrize("relative", CORPUS_PROJECTS)
+def test_corpus_textual_project_round_trips(corpus, relative, caplog):
+    caplog.set_level(logging.ERROR)
+    project = rosmod_text.read_project(corpus / "rosmod" / relative)
+    result = rosmod_to_aadl(project)
+    assert model.model_differences(project, aadl_to_rosmod(result.model)) == []
+
+
+@pytest.mark.parametrize("archive", WEBGME_ARCHIVES)
+def test_corpus_webgme_projects_round_trip(corpus, archive, caplog):
+    caplog.set_level(logging.ERROR)
+    projects = webgme_projects(str(corpus), archive)
+    assert len(projects) >= 4
+    for project in projects:
+        result = rosmod_to_aadl(project)
+        assert model.model_differences(project, aadl_to_rosmod(result.model)) == [], project.name
+
+
+@needs_reader
+def test_corpus_names_come_back_from_the_trace(corpus, tmp_path, caplog):
+    caplog.set_level(logging.ERROR)
+    (project,) = [
+        p
+        for p in webgme_projects(str(corpus), "samples-2018-05-19_noTLC.webgmex")
+        if p.name == "Introduction to ROSMOD"
+    ]
+    result, aadl = through_text(project, tmp_path)
+    assert strip_names(aadl) > 0
+    assert model.model_differences(project, aadl_to_rosmod(aadl)) != []
+    assert model.model_differences(project, aadl_to_rosmod(aadl, trace=result.trace)) == []
+
+
+# --------------------------------------------------------------------------- best effort
+
+ROBOT = """package robot_sw
+public
+  with ROS_Properties;
+
+  data Odometry
+    properties
+      ROS_Properties::Message_Type => "nav_msgs/Odometry";
+  end Odometry;
+
+  data Blob
+  end Blob;
+
+  thread sensor
+    features
+      odom: out event data port Odometry;
+      raw: out event data port Blob;
+    properties
+      Dispatch_Protocol => Periodic;
+      Period => 50 ms;
+      Priority => 20;
+  end sensor;
+
+  thread implementation sensor.impl
+  end sensor.impl;
+
+  thread fuser
+    features
+      odom: in event data port Odometry;
+      both: in out event data port Blob;
+    properties
+      Dispatch_Protocol => Sporadic;
+      Deadline => 20 ms;
+  end fuser;
+
+  thread implementation fuser.impl
+  end fuser.impl;
+
+  thread idle
+    properties
+      Dispatch_Protocol => Background;
+  end idle;
+
+  thread implementation idle.impl
+  end idle.impl;
+
+  process driver
+    features
+      odom_out: out event data port Odometry;
+      raw_out: out event data port Blob;
+  end driver;
+
+  process implementation driver.impl
+    subcomponents
+      sense: thread sensor.impl;
+      rest: thread idle.impl;
+    connections
+      c1: port sense.odom -> odom_out;
+      c2: port sense.raw -> raw_out;
+  end driver.impl;
+
+  process planner
+    features
+      odom_in: in event data port Odometry;
+  end planner;
+
+  process implementation planner.impl
+    subcomponents
+      fuse: thread fuser.impl;
+    connections
+      c3: port odom_in -> fuse.odom;
+  end planner.impl;
+
+  processor cpu
+  end cpu;
+
+  device lidar
+  end lidar;
+
+  system robot
+  end robot;
+
+  system implementation robot.impl
+    subcomponents
+      drv: process driver.impl;
+      pln: process planner.impl;
+      cpu1: processor cpu;
+      cpu2: processor cpu;
+      scan: device lidar;
+    connections
+      odom: port drv.odom_out -> pln.odom_in;
+      mixed: port drv.raw_out -> pln.odom_in;
+    properties
+      Actual_Processor_Binding => (reference (cpu1)) applies to drv;
+      Actual_Processor_Binding => (reference (cpu2)) applies to pln;
+  end robot.impl;
+end robot_sw;
+"""
+
+
+@needs_instantiate
+def test_best_effort_on_a_model_of_our_own(tmp_path):
+    from rosaadl.importers.aadl_text import read_files
+
+    (tmp_path / "robot_sw.aadl").write_text(ROBOT)
+    aadl = read_files([tmp_path / "robot_sw.aadl"])
+    assert not is_rosmod_convention(aadl)
+    assert top_level_systems(aadl) == ["robot_sw::robot.impl"]
+    warnings: list[Diagnostic] = []
+    project = aadl_to_rosmod(aadl, warnings=warnings)
+    (deployment,) = project.deployments
+    assert [(n.name, n.host.name, n.hostRef) for n in deployment.nodes] == [
+        ("drv", "cpu1", "robot/cpu1"),
+        ("pln", "cpu2", "robot/cpu2"),
+    ]
+    assert [i.name for i in deployment.nodes[0].componentInstances] == ["sense", "rest"]
+    (package,) = project.software.packages
+    assert package.name == "robot_sw"
+    sensor, idle, fuser = package.components
+    assert (sensor.name, idle.name, fuser.name) == ("sensor", "idle", "fuser")
+    assert [(p.eClass.name, p.name, p.type) for p in sensor.ports] == [
+        ("Publisher", "odom", "nav_msgs/Odometry"),
+        ("Publisher", "raw", "robot_sw/Blob"),
+    ]
+    (timer,) = sensor.timers
+    assert (timer.name, str(timer.period), timer.priority) == ("sense_timer", "0.05", 20)
+    assert [(p.name, str(p.deadline)) for p in fuser.ports] == [("odom", "0.02")]
+    assert [m.name for m in package.messages] == ["Blob"]
+    messages = [w.message for w in warnings]
+    paths = [w.location.path for w in warnings]
+    assert any("device scan" in m for m in messages) and "robot_impl_Instance.scan" in paths
+    assert any("thread rest has dispatch protocol Background" in m for m in messages)
+    assert any("port both is 'in out'" in m for m in messages)
+    assert any("robot_sw::Blob has no ROS_Properties::Message_Type" in m for m in messages)
+    assert any("joins ports of different types" in m for m in messages)
+    assert not aadl.instances  # the instances made for the conversion are not left behind
+    out = tmp_path / "project"
+    write_project(project, out)
+    again = rosmod_text.read_project(out)
+    assert rosmod_text.summarize(again)["component_instances"] == 3
+
+
+@needs_instantiate
+def test_best_effort_on_the_library_tracking_application(tmp_path):
+    from rosaadl.importers.aadl_text import read_files
+
+    aadl = read_files([], include_library=True)
+    warnings: list[Diagnostic] = []
+    project = aadl_to_rosmod(aadl, roots=["sys_tracking::tracking.impl"], warnings=warnings)
+    (deployment,) = project.deployments
+    nodes = {n.name: n for n in deployment.nodes}
+    assert set(nodes) == {"usbcam", "tracker", "poscmd"}
+    assert nodes["usbcam"].host.name == "big_proc1"
+    assert nodes["poscmd"].host.name == "little_proc1"
+    types = {p.type for pkg in project.software.packages for c in pkg.components for p in c.ports}
+    assert {"sensor_msgs/Image", "geometry_msgs/Point", "geometry_msgs/Twist"} <= types
+    periods = {str(t.period) for pkg in project.software.packages for c in pkg.components for t in c.timers}
+    assert "0.033333" in periods and "0.1" in periods
+    assert any(w.location.path == "tracking_impl_Instance.p3DX.camera" for w in warnings)
+    out = tmp_path / "tracking"
+    write_project(project, out)
+    again = rosmod_text.read_project(out)
+    counts = rosmod_text.summarize(again)
+    assert counts["nodes"] == 3 and counts["component_instances"] == 6 and counts["hosts"] == 8
+
+
+@needs_instantiate
+def test_best_effort_without_roots_warns(tmp_path):
+    from rosaadl.importers.aadl_text import read_files
+
+    aadl = read_files([], include_library=True)
+    warnings: list[Diagnostic] = []
+    project = aadl_to_rosmod(aadl, warnings=warnings)
+    assert len(project.deployments) == 0
+    assert any("no root system implementation" in w.message for w in warnings)
+
+
+@needs_instantiate
+def test_best_effort_with_an_unknown_root_is_an_error():
+    from rosaadl.importers.aadl_text import read_files
+
+    aadl = read_files([], include_library=True)
+    with pytest.raises(TransformationError, match="cannot instantiate nowhere::sys.impl"):
+        aadl_to_rosmod(aadl, roots=["nowhere::sys.impl"])
+
+
+# ------------------------------------------------------------- files in, files out (the CLI's work)
+
+
+@needs_instantiate
+def test_convert_aadl_files_best_effort(tmp_path):
+    (tmp_path / "robot_sw.aadl").write_text(ROBOT)
+    warnings: list[Diagnostic] = []
+    written = convert_aadl_files([tmp_path / "robot_sw.aadl"], tmp_path / "robot", warnings=warnings)
+    assert (tmp_path / "robot" / "03-Deployment" / "robot.rdp") in written
+    assert rosmod_text.summarize(rosmod_text.read_project(tmp_path / "robot"))["nodes"] == 2
+    assert any("device scan" in w.message for w in warnings)
+
+
+@needs_reader
+def test_convert_aadl_files_with_the_trace(project, tmp_path):
+    result = rosmod_to_aadl(project)
+    write_model(result.model, tmp_path / "aadl")
+    trace_file = tracing.save_trace(result.trace, tmp_path / "small.trace")
+    convert_aadl_files([tmp_path / "aadl"], tmp_path / "small", trace_file=trace_file)
+    back = rosmod_text.read_project(tmp_path / "small")
+    assert {d.name for d in back.deployments} == {"field test"}
+    assert {h.name for h in back.systems[0].hosts} == {"board-1", "laptop"}
