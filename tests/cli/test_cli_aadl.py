@@ -115,7 +115,8 @@ def test_export_aadl_writes_only_the_users_units(tmp_path: Path, capsys) -> None
     source = tmp_path / "src"
     source.mkdir()
     (source / "demo.aadl").write_text(
-        "package demo\npublic\n  thread worker\n  properties\n    Period => 10 ms;\n  end worker;\nend demo;\n"
+        "package demo\npublic\n  thread worker\n  properties\n    Period => 10 ms;\n"
+        "  end worker;\nend demo;\n"
     )
     code, stdout, err = run(["export", "aadl", str(source), "-o", str(tmp_path / "out")], capsys)
     assert code == 0, err

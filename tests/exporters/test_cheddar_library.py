@@ -44,7 +44,8 @@ def test_export_then_import_preserves_timing_and_bindings(workspace, root: str) 
     assert sorted(old) == sorted(new)
     for name, task in old.items():
         twin = new[name]
-        assert (twin.period, twin.capacity, twin.deadline) == (task.period, task.capacity, task.deadline), name
+        timing = (task.period, task.capacity, task.deadline)
+        assert (twin.period, twin.capacity, twin.deadline) == timing, name
         thread = model.find_instance(instance, task.name)
         if property_value(thread, "Priority") is not None:
             assert twin.priority == task.priority, name
