@@ -35,6 +35,7 @@ from typing import Any
 from pyecore.ecore import EClass, EObject
 
 from rosaadl import model
+from rosaadl.bulk import FastBuilder
 from rosaadl.errors import Location, RosaadlError, TransformationError
 from rosaadl.transforms import trace as tracing
 
@@ -127,6 +128,7 @@ class Context:
         self.transformation = transformation
         self.options = dict(options)
         self.trace = tracing.new_trace(transformation.name)
+        self.builder = FastBuilder()  # bulk construction for the trace and for rules that want it
         self.warnings: list[RosaadlError] = []
         self._applications: list[_Application] = []
         self._by_source: dict[int, list[_Application]] = {}
@@ -328,7 +330,7 @@ class Transformation:
         ctx._applications.append(app)
         for src in sources:
             ctx._by_source.setdefault(id(src), []).append(app)
-        tracing.add_link(ctx.trace, rule.name, sources, targets)
+        tracing.add_link(ctx.trace, rule.name, sources, targets, builder=ctx.builder)
         return app
 
     def _bind(self, ctx: Context, app: _Application) -> None:

@@ -16,6 +16,7 @@ from pathlib import Path
 from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.bulk import FastBuilder
 from rosaadl.errors import ModelError
 
 __all__ = ["element_key", "find_by_key", "new_trace", "add_link", "TraceIndex", "save_trace", "load_trace"]
@@ -71,8 +72,8 @@ def find_by_key(root: EObject, key: str) -> EObject | None:
     return current
 
 
-def _end(obj: EObject, uri: str | None) -> EObject:
-    return model.new(
+def _end(obj: EObject, uri: str | None, builder: FastBuilder) -> EObject:
+    return builder.make(
         "trace.TraceElement",
         uri=uri or "",
         path=element_key(obj),
@@ -93,11 +94,18 @@ def add_link(
     *,
     source_uri: str | None = None,
     target_uri: str | None = None,
+    builder: FastBuilder | None = None,
 ) -> EObject:
-    link = model.new("trace.TraceLink", rule=rule)
-    link.sources.extend(_end(s, source_uri) for s in sources)
-    link.targets.extend(_end(t, target_uri) for t in targets)
-    trace.links.append(link)
+    """Record one rule application; pass the run's ``builder`` when adding many links."""
+    builder = builder or FastBuilder()
+    link = builder.make("trace.TraceLink", rule=rule)
+    ends = [_end(s, source_uri, builder) for s in sources]
+    if ends:
+        builder.add(link, "sources", *ends)
+    ends = [_end(t, target_uri, builder) for t in targets]
+    if ends:
+        builder.add(link, "targets", *ends)
+    builder.add(trace, "links", link)
     return link
 
 
