@@ -1665,8 +1665,9 @@ def read_string(
     """Read the packages and property sets of one AADL text into ``model`` (a new
     ``AadlModel`` when None) and return the model.
 
-    Raises :class:`AadlSyntaxError` (syntax, encoding) or :class:`ValidationError` (the
-    legality rules checked while building), both located; nothing is added to ``model`` then.
+    Raises :class:`AadlSyntaxError` (syntax, encoding, literals out of range) or
+    :class:`ValidationError` (the legality rules checked while building; ``.diagnostics`` lists
+    every one found), both located; nothing is added to ``model`` then.
     Warnings are logged and appended to ``warnings`` when given.  Names are not resolved here:
     :func:`read_files` does that across files.
     """
@@ -1754,9 +1755,12 @@ def read_files(
     predeclared property sets, SEI, Data_Model, Base_Types, ROS packages, hardware) is read
     first; a user unit named like a library unit replaces it, with a warning.  With ``check``
     every name, unit and enumeration literal is resolved across all units
-    (:class:`rosaadl.resolution.Resolver`); every error found is reported in one located
-    :class:`NameResolutionError`; warnings (a property set that is not loaded, a missing
-    ``with`` clause) are logged and appended to ``warnings``.
+    (:class:`rosaadl.resolution.Resolver`, then units, enumeration literals and record fields
+    of every property value against its property's type); every error found is reported in
+    one located :class:`NameResolutionError` (the first one's location, all of them in the
+    message and in ``.diagnostics``); warnings (a property set that is not loaded, a missing
+    ``with`` clause, a name declared twice, prototypes) are logged and appended to ``warnings``.
+    ``check=False`` reads without resolving (files that name packages not given, for example).
     """
     if isinstance(paths, str | os.PathLike):
         paths = [paths]
@@ -1790,7 +1794,8 @@ def read_files(
         if units:
             _add(model, "units", *units)
     if check:
-        notes.extend(_check(model))
+        with gc_paused(promote=False):  # the checks only add caches: no garbage to collect
+            notes.extend(_check(model))
     _report([d for d in notes if d.severity != "error"], warnings)
     _raise_errors([d for d in notes if d.severity == "error"], NameResolutionError, "errors")
     return model
