@@ -333,14 +333,21 @@ class _UnitWriter:
         self.where = [name]
         for part in name.split("::"):
             self.ident(part, "the package", pkg)
-        public = [c for c in pkg.classifiers if _enum_name(c.visibility) != "private"]
-        private = [c for c in pkg.classifiers if _enum_name(c.visibility) == "private"]
+
+        def split(items: Iterable[EObject]) -> tuple[list[EObject], list[EObject]]:
+            items = list(items)
+            hidden = [i for i in items if _enum_name(i.visibility) == "private"]
+            return [i for i in items if _enum_name(i.visibility) != "private"], hidden
+
+        public, private = split(pkg.classifiers)
+        renamings, private_renamings = split(pkg.renamings)
+        annexes, private_annexes = split(pkg.annexLibraries)
         self.emit(0, f"package {name}")
         self.emit(0, "public")
-        self.package_section(pkg.withs, pkg.renamings, public, pkg.annexLibraries)
-        if private or pkg.privateWiths:
+        self.package_section(pkg.withs, renamings, public, annexes)
+        if private or pkg.privateWiths or private_renamings or private_annexes:
             self.emit(0, "private")
-            self.package_section(pkg.privateWiths, (), private, ())
+            self.package_section(pkg.privateWiths, private_renamings, private, private_annexes)
         if pkg.ownedPropertyAssociations:
             self.emit(0, "properties")
             for assoc in pkg.ownedPropertyAssociations:
@@ -579,7 +586,9 @@ class _UnitWriter:
                     called = f"processor.{processor.group(1)}"
                 else:
                     called = self.classifier_ref(called, f"the subprogram called by {call_name!r}", call)
-                self.emit(4, f"{call_name}: subprogram {called};")
+                self.element_with_properties(
+                    4, f"{call_name}: subprogram {called}", call.ownedPropertyAssociations, ""
+                )
             self.element_with_properties(
                 3, "}", seq.ownedPropertyAssociations, self.in_modes(seq.inModes, seq)
             )

@@ -1238,3 +1238,21 @@ def test_corpus_files_are_found(corpus: Path) -> None:
     assert len(CORPUS_FILES) >= 100
     assert {p.relative_to(corpus).parts[0] for p in CORPUS_FILES} == {"osate", "aadl-ros", "cheddar"}
     assert len(LIBRARY_FILES) >= 10
+
+
+@pytest.mark.skipif(READER is None, reason=NO_READER)
+def test_call_properties_and_private_renamings_and_annexes_round_trip() -> None:
+    text = (
+        "package cb\npublic\n  subprogram sp\n  end sp;\n  thread t\n  end t;\n  thread implementation t.i\n"
+        "  calls\n    seq: { c1: subprogram sp {Source_Name => \"x\";}; };\n  end t.i;\nprivate\n"
+        "  with Base_Types;\n  sp2 renames subprogram sp;\n"
+        "  annex EMV2 {** error types end types; **};\nend cb;\n"
+    )
+    first = READER.read_string(text, "cb.aadl")
+    unit = next(u for u in first.units if u.name == "cb")
+    written = write_unit(unit)
+    assert 'c1: subprogram sp { Source_Name => "x"; };' in written
+    assert written.index("private") < written.index("sp2 renames") < written.index("annex EMV2")
+    second = READER.read_string(written, "again.aadl")
+    again = next(u for u in second.units if u.name == "cb")
+    assert model.model_differences(unit, again, ignore=IGNORED) == []
