@@ -94,3 +94,34 @@ def export_cheddar(
     report.say(f"{instance.name} -> {written}")
     report.data.update({"instance": instance.name, "output": str(written)})
     sys.exit(report.emit(options))
+
+
+@command.command("aaxl2")
+@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--root", help="The system implementation to instantiate, or the instance to take.")
+@click.option(
+    "-o",
+    "--output",
+    "out",
+    type=click.Path(path_type=Path),
+    required=True,
+    help="Output folder: instances/<Root>_Instance.aaxl2 and the .aadl files it refers to.",
+)
+@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
+@pass_options
+def export_aaxl2(
+    options: Options, inputs: tuple[Path, ...], root: str | None, out: Path, lenient: bool
+) -> None:
+    """OSATE instance model (.aaxl2) with its AADL sidecars, as OSATE itself writes it."""
+    from rosaadl.exporters import aaxl2
+
+    report = Report()
+    loaded = read_aadl_inputs(list(inputs))
+    instance = choose_instance(loaded, root, lenient=lenient)
+    notes: list = []
+    written = aaxl2.write_aaxl2(instance, out, warnings=notes)
+    _report_warnings(report, [w for w in loaded.warnings + notes if w.severity != "info"])
+    options.progress(f"wrote {written}")
+    report.say(f"{instance.name} -> {written}")
+    report.data.update({"instance": instance.name, "output": str(written)})
+    sys.exit(report.emit(options))

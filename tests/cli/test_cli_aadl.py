@@ -122,3 +122,24 @@ def test_export_aadl_writes_only_the_users_units(tmp_path: Path, capsys) -> None
     assert code == 0, err
     assert [p.name for p in (tmp_path / "out").iterdir()] == ["demo.aadl"]
     assert "Period => 10 ms;" in (tmp_path / "out" / "demo.aadl").read_text()
+
+
+def test_export_aaxl2_conforms_to_osates_metamodel(tmp_path: Path, capsys, corpus) -> None:
+    import importlib.util
+    import sys
+
+    helper = Path(__file__).resolve().parents[1] / "exporters" / "osate_conformance.py"
+    spec = importlib.util.spec_from_file_location("osate_conformance_cli", helper)
+    conformance = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = conformance  # its dataclasses look their module up
+    spec.loader.exec_module(conformance)
+    code, _, err = run(
+        ["export", "aaxl2", str(SYSTEMS), "--root", "sys_rover::rover.impl", "-o", str(tmp_path / "osate")],
+        capsys,
+    )
+    assert code == 0, err
+    (written,) = (tmp_path / "osate" / "instances").glob("*.aaxl2")
+    result = conformance.check(written.read_bytes(), corpus / "osate" / "metamodel")
+    assert result.ok, result
+    code, _, err = run(["import", str(written), "-o", str(tmp_path / "back.json")], capsys)
+    assert code == 0, err
