@@ -1,16 +1,123 @@
-"""``rosaadl generate``: registered now, implemented by the rclpy generation issue."""
+"""``rosaadl generate rclpy INPUTS... --root Pkg::Sys.impl -o WS/src``: ROS 2 packages from the model."""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import click
 
-from rosaadl.cli.common import not_yet
+from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.inputs import Inputs, choose_instance, read_aadl_inputs
+from rosaadl.errors import Diagnostic, UsageError
 
 __all__ = ["command"]
 
 
-@click.command("generate", context_settings={"ignore_unknown_options": True})
-@click.argument("args", nargs=-1, type=click.UNPROCESSED)
-def command(args: tuple[str, ...]) -> None:
-    """Not implemented yet: comes with the rclpy generation issue."""
-    not_yet("generate", "comes with the rclpy generation issue")
+@click.group("generate")
+def command() -> None:
+    """Generate code from a model."""
+
+
+def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
+    """A ROSMOD project converted to AADL, with the library, and the conversion's trace."""
+    from rosaadl.formats import read_input
+    from rosaadl.importers.aadl_text import read_files
+    from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+
+    loaded = read_input(path, project=project)
+    if len(loaded.roots) > 1:
+        names = ", ".join(r.name for r in loaded.roots)
+        raise UsageError(
+            f"the input holds several projects ({names}); choose one with --project", file=str(path)
+        )
+    converted = rosmod_to_aadl(loaded.root)
+    warnings: list[Diagnostic] = list(loaded.warnings) + list(converted.warnings)
+    workspace = read_files([], warnings=warnings, check=False)
+    workspace.units.extend(list(converted.model.units))
+    return Inputs(workspace, warnings), converted.trace
+
+
+@command.command("rclpy")
+@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--root", help="The system implementation to generate for (or the instance to take).")
+@click.option(
+    "-o",
+    "--output",
+    "out",
+    type=click.Path(path_type=Path),
+    required=True,
+    help="The workspace's src folder (WS/src).",
+)
+@click.option("--force", is_flag=True, help="Overwrite files that carry no user-code marker.")
+@click.option("--dry-run", is_flag=True, help="Say what would change; write nothing.")
+@click.option(
+    "--trace",
+    "trace_file",
+    type=click.Path(path_type=Path),
+    help="A trace of renames since the last generation (user code moves with its element).",
+)
+@click.option("--app-name", help="Name of the application's packages (default: the root type's name).")
+@click.option("--project", help="The project to take from a .webgmex archive.")
+@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
+@pass_options
+def generate_rclpy(
+    options: Options,
+    inputs: tuple[Path, ...],
+    root: str | None,
+    out: Path,
+    force: bool,
+    dry_run: bool,
+    trace_file: Path | None,
+    app_name: str | None,
+    project: str | None,
+    lenient: bool,
+) -> None:
+    """ament_python packages (one Node per AADL process), interfaces and launch files (inputs: AADL
+    text, a rosaadl model, an .aaxl2, or a ROSMOD project converted on the way)."""
+    from rosaadl.exporters.rclpy import GenerationOptions, generate_workspace
+    from rosaadl.formats import reader_for
+
+    for path in inputs:
+        if not path.exists():
+            raise UsageError("no such file or folder", file=str(path))
+    rosmod_trace = None
+    if len(inputs) == 1 and reader_for(inputs[0]).name in ("rosmod", "webgme"):
+        loaded, rosmod_trace = _rosmod_inputs(inputs[0], project)
+    else:
+        loaded = read_aadl_inputs(list(inputs))
+    instance = choose_instance(loaded, root, lenient=lenient)
+    report = Report()
+    result = generate_workspace(
+        instance,
+        out,
+        force=force,
+        dry_run=dry_run,
+        trace=trace_file,
+        rosmod_trace=rosmod_trace,
+        options=GenerationOptions(app_name=app_name),
+    )
+    for diagnostic in list(loaded.warnings) + list(result.diagnostics):
+        if diagnostic.severity == "error":
+            report.error(diagnostic)
+        elif diagnostic.severity == "warning":
+            report.warn(diagnostic)
+    counts: dict[str, int] = {}
+    for change in result.changes:
+        counts[change.action] = counts.get(change.action, 0) + 1
+        if change.action in ("create", "update", "skip"):
+            report.say(f"{change.action:9} {change.path}" + (f"  ({change.reason})" if change.reason else ""))
+    for move in result.orphaned:
+        report.say(f"orphaned  {move.name}")
+    verb = "would write" if dry_run else "wrote"
+    options.progress(f"{verb} {counts.get('create', 0) + counts.get('update', 0)} file(s) to {out}")
+    report.data.update(
+        {
+            "output": str(out),
+            "dry_run": dry_run,
+            "changes": counts,
+            "moved": len(result.moved),
+            "orphaned": [m.name for m in result.orphaned],
+        }
+    )
+    sys.exit(report.emit(options))

@@ -143,3 +143,26 @@ def test_export_aaxl2_conforms_to_osates_metamodel(tmp_path: Path, capsys, corpu
     assert result.ok, result
     code, _, err = run(["import", str(written), "-o", str(tmp_path / "back.json")], capsys)
     assert code == 0, err
+
+
+def test_generate_rclpy_keeps_user_code_and_writes_nothing_on_dry_run(tmp_path: Path, capsys) -> None:
+    out = tmp_path / "ws" / "src"
+    args = ["generate", "rclpy", str(SYSTEMS), "--root", "sys_rover::rover.impl", "-o", str(out)]
+    code, stdout, err = run(args, capsys)
+    assert code == 0, err
+    nodes = sorted(p for p in out.rglob("*.py") if "<user-code" in p.read_text())
+    assert nodes, "generated nodes carry user-code markers"
+    first = nodes[0]
+    text = first.read_text()
+    marker_end = text.index("# </user-code>")
+    edited = (
+        text[:marker_end] + "        self.get_logger().info('kept')  # hand-written\n" + text[marker_end:]
+    )
+    first.write_text(edited)
+    code, _, err = run(args, capsys)
+    assert code == 0, err
+    assert "# hand-written" in first.read_text()
+    before = {p: p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    code, _, err = run([*args, "--dry-run"], capsys)
+    assert code == 0, err
+    assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before

@@ -1,0 +1,196 @@
+"""Fast, read-only navigation of instance models for the generator.
+
+The generator walks large instances many times; these helpers follow the instance containment
+directly (``componentInstances``, ``featureInstances``, ``connectionInstances``) and cache
+class membership per metamodel class, instead of the model API's reflective walk.  They give
+the same answers as :func:`rosaadl.model.walk`, :func:`rosaadl.model.is_a` and
+:func:`rosaadl.model.instance_path` on instance objects.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from functools import cache
+
+from pyecore.ecore import EClass, EObject
+
+from rosaadl.properties import EnumLiteral, python_value
+
+__all__ = [
+    "is_kind",
+    "enum_name",
+    "components",
+    "connections",
+    "instance_path",
+    "owner_component",
+    "process_of",
+    "prop",
+    "key",
+    "caching",
+]
+
+
+@cache
+def _kinds(eclass: EClass) -> frozenset[str]:
+    return frozenset([eclass.name, *(c.name for c in eclass.eAllSuperTypes())])
+
+
+def is_kind(obj: object, name: str) -> bool:
+    """``obj`` is an instance of the metamodel class ``name`` (or of a subclass)."""
+    return isinstance(obj, EObject) and name in _kinds(obj.eClass)
+
+
+def enum_name(value: object) -> str:
+    """The name of an enumeration literal, an :class:`EnumLiteral` or a string."""
+    if isinstance(value, EnumLiteral):
+        return value.name
+    return str(getattr(value, "name", value) or "")
+
+
+def components(root: EObject) -> Iterator[EObject]:
+    """``root`` and every component instance below it, depth first in declaration order."""
+    stack = [root]
+    while stack:
+        current = stack.pop()
+        yield current
+        stack.extend(reversed(list(current.componentInstances)))
+
+
+def connections(root: EObject) -> Iterator[EObject]:
+    """Every connection instance of ``root`` and of the components below it."""
+    for component in components(root):
+        yield from component.connectionInstances
+
+
+def _segment(obj: EObject) -> str:
+    name = obj.name or ""
+    index = getattr(obj, "index", None)
+    if index is None:
+        return name
+    if isinstance(index, int):
+        return f"{name}[{index}]" if index > 0 else name
+    return name + "".join(f"[{i}]" for i in index)
+
+
+def instance_path(obj: EObject) -> str:
+    """``top.sw.cam.publisher`` (as :func:`rosaadl.model.instance_path`)."""
+    parts = []
+    current = obj
+    while current is not None and is_kind(current, "InstanceObject"):
+        parts.append(_segment(current))
+        current = current.eContainer()
+    return ".".join(reversed(parts))
+
+
+def owner_component(obj: EObject) -> EObject | None:
+    """The component instance a feature instance belongs to (through feature groups)."""
+    current = obj.eContainer() if obj is not None else None
+    while current is not None and not is_kind(current, "ComponentInstance"):
+        current = current.eContainer()
+    return current
+
+
+def process_of(obj: EObject) -> EObject | None:
+    """The process instance that contains ``obj`` (itself for a process), or None."""
+    current = obj
+    while current is not None:
+        if is_kind(current, "ComponentInstance") and enum_name(current.category) == "process":
+            return current
+        current = current.eContainer()
+    return None
+
+
+def _table(obj: EObject) -> dict[str, list[tuple[str, EObject]]]:
+    table: dict[str, list[tuple[str, EObject]]] = {}
+    for assoc in getattr(obj, "ownedPropertyAssociations", None) or ():
+        if assoc.appliesTo:
+            continue
+        written = (assoc.property or "").lower()
+        table.setdefault(written.rpartition("::")[2], []).append((written, assoc))
+    return table
+
+
+def _value(assoc: EObject) -> object:
+    default = None
+    for modal in assoc.ownedValues:
+        if not modal.inModes:
+            default = modal.value
+            break
+    if default is None and assoc.ownedValues:
+        default = assoc.ownedValues[0].value
+    return python_value(default)
+
+
+_CACHE: ContextVar[dict | None] = ContextVar("rosaadl_rclpy_instance_cache", default=None)
+
+
+@contextmanager
+def caching() -> Iterator[None]:
+    """Within the block, property values and element keys are computed once per object (the
+    instance must not change meanwhile)."""
+    token = _CACHE.set({})
+    try:
+        yield
+    finally:
+        _CACHE.reset(token)
+
+
+def prop(obj: EObject, name: str) -> object:
+    """The value of property ``name`` held by an instance object (its resolved value), as
+    :func:`rosaadl.properties.property_value` gives it; None when it has none."""
+    cache = _CACHE.get()
+    wanted = name.lower()
+    if cache is not None:
+        memo = cache.get((id(obj), wanted), _MISSING)
+        if memo is not _MISSING:
+            return memo
+        table = cache.get(id(obj))
+        if table is None:
+            table = cache[id(obj)] = _table(obj)
+    else:
+        table = _table(obj)
+    qualified = "::" in wanted
+    found = None
+    for written, assoc in table.get(wanted.rpartition("::")[2], ()):
+        if not qualified or written == wanted or "::" not in written:
+            found = assoc
+    value = None if found is None else _value(found)
+    if cache is not None:
+        cache[(id(obj), wanted)] = value
+    return value
+
+
+_MISSING = object()
+
+
+def key(obj: EObject) -> str:
+    """The stable key of ``obj`` (:func:`rosaadl.transforms.trace.element_key`)."""
+    cache = _CACHE.get()
+    if cache is not None:
+        found = cache.get(("key", id(obj)))
+        if found is not None:
+            return found
+    container = obj.eContainer()
+    if container is None:
+        result = "/"
+    else:
+        feature = obj.eContainmentFeature()
+        name = getattr(obj, "name", None) if "name" in _features(obj.eClass) else None
+        if name:
+            step = f"{feature.name}[{name}]"
+        elif feature.many:
+            step = f"{feature.name}.{container.eGet(feature).index(obj)}"
+        else:
+            step = feature.name
+        parent = key(container)
+        result = f"{parent.rstrip('/')}/{step}"
+    if cache is not None:
+        cache[("key", id(obj))] = result
+    return result
+
+
+@cache
+def _features(eclass: EClass) -> frozenset[str]:
+    return frozenset(f.name for f in eclass.eAllStructuralFeatures())
