@@ -10,6 +10,9 @@ is that demand over the core's ``SEI::MIPSCapacity`` — and its plain ``CET / P
 ``schedulability=True``, when the feasibility tests of :mod:`rosaadl.analysis.schedulability`
 (response-time analysis where it applies) accept its periodic threads under the core's
 ``Scheduling_Protocol`` (rate monotonic when it has none), execution times scaled like the load.
+A process measured separately on each core type (a library node with one platform-dependent
+implementation per core) can be given its execution times per candidate core instead
+(``execution_times``): it then runs only on those cores, with those times, unscaled.
 
 Search: branch and bound over processes (heaviest first) and cores, cutting branches that cannot
 beat the best maximum load found and trying only one of several identical empty cores; it is
@@ -180,14 +183,23 @@ class _Problem:
         allowed: list[list[int]],
         schedulability: bool,
         reader: PropertyReader,
+        times: list[dict[int, dict[str, Fraction]] | None] | None = None,
     ) -> None:
         self.processes = processes
         self.cores = cores
         self.allowed = allowed
         self.check_schedulability = schedulability
         self.reader = reader
+        # times[p][c][thread path]: the execution time (us) of a thread of p on core c, when given
+        self.times = times if times is not None else [None] * len(processes)
         # load[p][c]: the load process p puts on core c (None: it cannot run there)
-        self.load = [[self._load(p, c) for c in cores] for p in processes]
+        self.load = [
+            [
+                self._load(p, c) if self.times[i] is None else self._given_load(i, k)
+                for k, c in enumerate(cores)
+            ]
+            for i, p in enumerate(processes)
+        ]
         self._sched_cache: dict[tuple[int, tuple[int, ...]], bool] = {}
         self._tasks: dict[tuple[int, int], list[Task]] = {}
         self.sched_calls = 0
@@ -211,6 +223,19 @@ class _Problem:
             total += demand_only / core.capacity
         return total
 
+    def _given_load(self, process: int, core_index: int) -> Fraction | None:
+        """Σ CET / Period with the execution times given for this core (None: not a candidate)."""
+        given = self.times[process]
+        cets = given.get(core_index) if given is not None else None
+        if cets is None:
+            return None
+        total = Fraction(0)
+        for thread in self.processes[process].threads:
+            cet = cets.get(thread.path)
+            if cet is not None and thread.period_us:
+                total += cet / thread.period_us
+        return total
+
     def scale(self, thread: _Thread, core: _Core) -> Fraction:
         if thread.reference_mips and core.capacity > 0:
             return thread.reference_mips / core.capacity
@@ -223,11 +248,14 @@ class _Problem:
         if found is not None:
             return found
         core = self.cores[core_index]
+        given = self.times[process]
+        cets = given.get(core_index, {}) if given is not None else None
         found = []
         for thread in self.processes[process].threads:
-            if thread.cet_us is None or thread.period_us is None or not thread.dispatch.recurrent:
+            cet = thread.cet_us if cets is None else cets.get(thread.path)
+            if cet is None or thread.period_us is None or not thread.dispatch.recurrent:
                 continue
-            capacity = thread.cet_us * self.scale(thread, core)
+            capacity = cet * (self.scale(thread, core) if cets is None else 1)
             if capacity <= 0:
                 continue
             found.append(
@@ -480,6 +508,7 @@ def search_deployment(
     schedulability: bool = True,
     node_limit: int = 200_000,
     exact_processes: int = 16,
+    execution_times: Mapping[str, Mapping[str, Mapping[str, Any]]] | None = None,
 ) -> DeploymentResult:
     """Propose bindings of ``processes`` (instances or paths; default: every process with threads)
     to ``processors`` (default: every processor without processor subcomponents, i.e. the cores),
@@ -488,6 +517,12 @@ def search_deployment(
     ``allowed`` restricts the cores of some processes (process path → core paths). Problems of
     at most ``exact_processes`` processes are searched exactly (within ``node_limit`` nodes of the
     branch and bound); larger ones by the heuristic.
+
+    ``execution_times`` gives, for processes whose execution times depend on the core type they
+    run on, process path → core path → thread path → ``Compute_Execution_Time`` in seconds
+    (paths with or without the root's name; thread paths may be relative to the process). Such a
+    process can run only on the cores listed for it; there its threads take the given times
+    (a thread not listed takes none), unscaled, over the Periods of the instance.
     """
     from rosaadl import model as _model
 
@@ -594,7 +629,8 @@ def search_deployment(
                 raise ModelError(f"allowed core {path!r} of {proc.path} is not a candidate processor")
             chosen.append(index[key])
         allowed_lists.append(sorted(chosen))
-    problem = _Problem(proc_list, core_list, allowed_lists, schedulability, reader)
+    times = _given_times(root.name or "", proc_list, index, execution_times) if execution_times else None
+    problem = _Problem(proc_list, core_list, allowed_lists, schedulability, reader, times)
     for p, proc in enumerate(proc_list):
         if all(problem.load[p][c] is None for c in allowed_lists[p]):
             diagnostics.append(
@@ -682,6 +718,48 @@ def search_deployment(
         nodes,
         tuple(diagnostics),
     )
+
+
+def _given_times(
+    root: str,
+    processes: list[_Process],
+    cores: dict[str, int],
+    given: Mapping[str, Mapping[str, Mapping[str, Any]]],
+) -> list[dict[int, dict[str, Fraction]] | None]:
+    """``execution_times`` as core index → thread path → CET in microseconds, per process."""
+
+    def full(path: str, prefix: str) -> str:
+        return path if path == prefix or path.startswith(prefix + ".") else f"{prefix}.{path}"
+
+    by_path = {p.path: i for i, p in enumerate(processes)}
+    out: list[dict[int, dict[str, Fraction]] | None] = [None] * len(processes)
+    for process_path, per_core in given.items():
+        index = by_path.get(full(process_path, root))
+        if index is None:
+            raise ModelError(f"execution times given for {process_path!r}, which is not a process searched")
+        threads = {t.path for t in processes[index].threads}
+        table: dict[int, dict[str, Fraction]] = {}
+        for core_path, per_thread in per_core.items():
+            core = cores.get(full(core_path, root))
+            if core is None:
+                raise ModelError(
+                    f"execution times of {process_path!r} given for {core_path!r}, which is not a candidate "
+                    "processor"
+                )
+            cets: dict[str, Fraction] = {}
+            for thread_path, seconds in per_thread.items():
+                path = full(thread_path, processes[index].path)
+                if path not in threads:
+                    raise ModelError(
+                        f"execution time given for {thread_path!r}, not a thread of {process_path!r}"
+                    )
+                value = Fraction(str(seconds)) if isinstance(seconds, float) else Fraction(seconds)
+                if value < 0:
+                    raise ModelError(f"negative execution time for {thread_path!r} of {process_path!r}")
+                cets[path] = value * _US
+            table[core] = cets
+        out[index] = table
+    return out
 
 
 def _key(problem: _Problem, assignment: Sequence[int]) -> tuple[Fraction, Fraction]:

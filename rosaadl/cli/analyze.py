@@ -33,6 +33,12 @@ __all__ = ["command"]
     help="What Cheddar's plain integer times are (Cheddar inputs).",
 )
 @click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
+@click.option(
+    "--html",
+    "html_dir",
+    type=click.Path(path_type=Path),
+    help="Folder for the HTML report (report.html with plots, and report.json).",
+)
 @pass_options
 def command(
     options: Options,
@@ -42,6 +48,7 @@ def command(
     out: Path | None,
     time_unit: str,
     lenient: bool,
+    html_dir: Path | None,
 ) -> None:
     """Analyse a deployment; exit 1 when an analysis finds an overload or a missed deadline.
     Inputs may be AADL text, a rosaadl model, an OSATE .aaxl2 or a Cheddar file."""
@@ -53,15 +60,22 @@ def command(
     options.progress(f"analysing {instance.name}: {', '.join(selected)}")
     report = run_analyses(instance, selected)
     written = report.write_csv(out) if out is not None else []
+    pages = []
+    if html_dir is not None:
+        from rosaadl.exporters.report import write_report
+
+        pages = write_report(instance, report, html_dir)
     if options.format == "json":
         document = json.loads(report.to_json())
         reading = [w.as_dict() for w in loaded.warnings if w.severity == "warning"]
         document["warnings"] = reading + document.get("warnings", [])
         if written:
             document["csv"] = [str(p) for p in written]
+        if pages:
+            document["html"] = [str(p) for p in pages]
         click.echo(json.dumps(document, indent=2))
     else:
         click.echo(report.text())
-        for path in written:
+        for path in [*written, *pages]:
             options.progress(f"wrote {path}")
     sys.exit(EXIT_OK if report.ok else EXIT_ERRORS)

@@ -11,7 +11,6 @@ Progress and logs go to stderr; data goes to stdout or files.
 from __future__ import annotations
 
 import json
-import sys
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -27,7 +26,6 @@ __all__ = [
     "EXIT_USAGE",
     "EXIT_INTERNAL",
     "pass_options",
-    "not_yet",
 ]
 
 EXIT_OK = 0
@@ -102,9 +100,3 @@ class Report:
             for error in self.errors:
                 click.echo(f"error: {error}" if isinstance(error, RosaadlError) else str(error), err=True)
         return EXIT_OK if self.ok else EXIT_ERRORS
-
-
-def not_yet(verb: str, issue: str) -> None:
-    """A verb that is registered but not implemented says so and exits 2; it does not pretend."""
-    click.echo(f"rosaadl {verb}: not implemented yet ({issue})", err=True)
-    sys.exit(EXIT_USAGE)

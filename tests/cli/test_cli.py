@@ -41,11 +41,6 @@ def test_usage_errors_exit_2(args, capsys) -> None:
     assert code == 2 and err
 
 
-def test_unimplemented_verbs_say_so_and_exit_2(capsys) -> None:
-    code, _, err = run_main(["generate", "rclpy", "x.aadl"], capsys)
-    assert code == 2 and "not implemented yet" in err
-
-
 def _good_model(tmp_path):
     ws = model.new("AadlModel", name="ws", units=[model.new("AadlPackage", name="p")])
     return model.save(ws, tmp_path / "good.xmi"), model.save(ws, tmp_path / "good.json")
