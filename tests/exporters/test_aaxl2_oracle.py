@@ -23,6 +23,7 @@ import re
 from pathlib import Path
 
 import pytest
+from corpus_cases import OSATE_INSTANCE_DIRS
 from lxml import etree
 from osate_conformance import check
 
@@ -34,29 +35,7 @@ from rosaadl.importers.osate_eras import normalize_fragment
 from rosaadl.properties import own_property
 from rosaadl.transforms.instantiate import instantiate
 
-INSTANCE_DIRS = (
-    "case-hamr-edp-domains",
-    "ex-carsystem",
-    "ex-crossdomain-security",
-    "ex-issue228-featuregroups",
-    "ex-issue440-arinc653",
-    "ex-large-modes",
-    "ex-latency-nobus",
-    "ex-latency-normal",
-    "ex-latency-partitioned-distributed",
-    "ex-latency-unbound",
-    "ex-mission-aircraft",
-    "ex-pullprotocols",
-    "ex-simple-thread-latency",
-    "fmw-uav-v3",
-    "gtse-atsv-tier0",
-    "inspecta-firewall-platform",
-    "osate2-emv2-annex-instance",
-    "osate2-issue2318-bidir",
-    "osate2-issue2780-featuregroups",
-    "osate2-pulseox",
-    "osate2-simple-control-modes",
-)
+INSTANCE_DIRS = OSATE_INSTANCE_DIRS
 CURRENT_OSATE_FILES = (
     "case-hamr-edp-domains",
     "ex-crossdomain-security",

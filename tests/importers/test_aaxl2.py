@@ -7,6 +7,7 @@ import re
 from pathlib import Path
 
 import pytest
+from corpus_cases import OSATE_DECLARATIVE_DIRS, OSATE_INSTANCE_DIRS
 from lxml import etree
 
 from rosaadl import metamodels, model
@@ -18,34 +19,8 @@ from rosaadl.units import Quantity
 
 # ----------------------------------------------------------------------------- corpus helpers
 
-DECLARATIVE = (
-    "ex-issue168-declarative-package",
-    "ex-issue411-declarative-propertyset",
-    "smaccm-geofence-declarative",
-)
-INSTANCE_DIRS = (
-    "case-hamr-edp-domains",
-    "ex-carsystem",
-    "ex-crossdomain-security",
-    "ex-issue228-featuregroups",
-    "ex-issue440-arinc653",
-    "ex-large-modes",
-    "ex-latency-nobus",
-    "ex-latency-normal",
-    "ex-latency-partitioned-distributed",
-    "ex-latency-unbound",
-    "ex-mission-aircraft",
-    "ex-pullprotocols",
-    "ex-simple-thread-latency",
-    "fmw-uav-v3",
-    "gtse-atsv-tier0",
-    "inspecta-firewall-platform",
-    "osate2-emv2-annex-instance",
-    "osate2-issue2318-bidir",
-    "osate2-issue2780-featuregroups",
-    "osate2-pulseox",
-    "osate2-simple-control-modes",
-)
+DECLARATIVE = OSATE_DECLARATIVE_DIRS
+INSTANCE_DIRS = OSATE_INSTANCE_DIRS
 
 # featureInstance elements (at any depth) per file: INDEX.md's table has no feature column,
 # so these were counted in the files with an XPath, independently of the importer.

@@ -8,6 +8,7 @@ import re
 from pathlib import Path
 
 import pytest
+from corpus_cases import OSATE_INSTANCE_DIRS
 from lxml import etree
 
 from rosaadl import model
@@ -580,29 +581,7 @@ def test_a_thousand_threads_quickly():
 
 # --------------------------------------------------------------------------- OSATE corpus
 
-_CORPUS_CASES = [
-    "case-hamr-edp-domains",
-    "ex-carsystem",
-    "ex-crossdomain-security",
-    "ex-issue228-featuregroups",
-    "ex-issue440-arinc653",
-    "ex-large-modes",
-    "ex-latency-nobus",
-    "ex-latency-normal",
-    "ex-latency-partitioned-distributed",
-    "ex-latency-unbound",
-    "ex-mission-aircraft",
-    "ex-pullprotocols",
-    "ex-simple-thread-latency",
-    "fmw-uav-v3",
-    "gtse-atsv-tier0",
-    "inspecta-firewall-platform",
-    "osate2-emv2-annex-instance",
-    "osate2-issue2318-bidir",
-    "osate2-issue2780-featuregroups",
-    "osate2-pulseox",
-    "osate2-simple-control-modes",
-]
+_CORPUS_CASES = list(OSATE_INSTANCE_DIRS)
 
 #: Cases instantiated with options, and why (everything else runs with the defaults).
 _OPTIONS = {
