@@ -815,15 +815,6 @@ def architecture_diagram(arch: dict[str, Any], cpu: list[dict[str, Any]]) -> str
     )
     if nodes:
         svg.text(20, 28, "ROS nodes and topics", 14, bold=True)
-    if arch["hardware"]:
-        svg.text(
-            width - 20,
-            hw_top - 14,
-            "Hardware: robots, boards, SoCs, cores and their CPU load",
-            14,
-            anchor="end",
-            bold=True,
-        )
     # hardware
     core_pos: dict[str, tuple[float, float]] = {}
     loads = {r["path"]: r for r in cpu}
@@ -881,6 +872,18 @@ def architecture_diagram(arch: dict[str, Any], cpu: list[dict[str, Any]]) -> str
         height - 22,
         width - 40,
     )
+    if arch["hardware"]:  # drawn last, with a white halo: binding lines cross this row
+        svg.text(
+            width - 20,
+            hw_top - 14,
+            "Hardware: robots, boards, SoCs, cores and their CPU load",
+            14,
+            anchor="end",
+            bold=True,
+            stroke="#ffffff",
+            stroke_width=5,
+            paint_order="stroke",
+        )
     return svg.render()
 
 
