@@ -132,6 +132,18 @@ def _phase(args) -> dict:
     return {"seconds": seconds, "objects": count}
 
 
+def _peak_mb() -> float:
+    """This process's peak resident memory. ``VmHWM`` belongs to the process image, so it starts
+    afresh at exec; ``ru_maxrss`` would carry the parent's high-water mark into the child."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
 def _run_phase(phase: str, mode: str, objects: int, workdir: Path) -> dict:
     cmd = [
         sys.executable,
@@ -161,7 +173,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.phase:
         result = _phase(args)
-        result["max_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        result["max_rss_mb"] = _peak_mb()
         print(json.dumps(result))
         return 0
 
