@@ -269,8 +269,8 @@ def run_demo(
 
 
 def _rel(run: DemoRun, path: Path) -> str:
-    try:
-        return str(path.relative_to(run.out))
+    try:  # artefacts may be recorded resolved while the output folder was given relative
+        return str(path.resolve().relative_to(run.out.resolve()))
     except ValueError:
         return str(path)
 
@@ -554,10 +554,9 @@ def command(options: Options, out: Path, project_dir: Path | None, bindings: Pat
     )
     for line in run.summary:
         report.say(f"  {line}")
-    folders: dict[str, int] = {}
-    for path in run.artefacts:
-        top = _rel(run, path).split("/")[0]
-        folders[top] = folders.get(top, 0) + 1
+    folders: dict[str, int] = {}  # what each top-level entry of the output holds on disk
+    for entry in sorted(run.out.iterdir()) if run.out.is_dir() else []:
+        folders[entry.name] = sum(1 for f in entry.rglob("*") if f.is_file()) if entry.is_dir() else 1
     report.say(
         "  produced: "
         + ", ".join(f"{k} ({n} file{'s' if n != 1 else ''})" for k, n in sorted(folders.items()))

@@ -4,6 +4,7 @@ clear line for bad input."""
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -203,3 +204,18 @@ def test_a_failing_export_stage_does_not_stop_the_others(tmp_path, capsys) -> No
     assert "failed stages: rclpy" in captured.out
     assert PIONEER_LINE in [line.strip() for line in captured.out.splitlines()]
     assert (out / "report.html").stat().st_size > 0  # the report stage still ran
+
+
+def test_summary_counts_what_each_folder_received(tmp_path, capsys, monkeypatch) -> None:
+    monkeypatch.chdir(tmp_path)  # a relative output folder, as `make demo` gives it
+    assert main(["demo", "-o", "demo-out"]) == 0
+    out = capsys.readouterr().out
+    (line,) = [ln for ln in out.splitlines() if ln.strip().startswith("produced:")]
+    counts = dict(re.findall(r"(\S+) \((\d+) files?\)", line))
+    on_disk = {
+        p.name: sum(1 for f in p.rglob("*") if f.is_file())
+        for p in (tmp_path / "demo-out").iterdir()
+        if p.is_dir()
+    }
+    for folder, files in on_disk.items():
+        assert int(counts[folder]) == files, (folder, line)
