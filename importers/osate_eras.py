@@ -924,10 +924,28 @@ def choose_era(uses: Iterable[HrefUse], uris: Iterable[str] = ()) -> EraChoice:
         (e for e in ERAS if e != era), key=lambda e: (abs(ERAS.index(e) - ERAS.index(era)), -ERAS.index(e))
     )
     set_eras: dict[str, str] = {}
+    # A set whose URIs name one era other than the file's is decoded in that era when it can be:
+    # OSATE renamed some literals in place (ARINC653's Data_Memory is Memory_Data today), so a
+    # file that keeps an old literal writes that set in the old layout, under the old URI form.
+    uri_eras_of: dict[str, set[str]] = {}
+    for use in predeclared:
+        pre = classify_uri(use.uri)
+        eras_here = set(pre.eras)  # type: ignore[union-attr]
+        known = uri_eras_of.get(pre.property_set)  # type: ignore[union-attr]
+        uri_eras_of[pre.property_set] = eras_here if known is None else known & eras_here  # type: ignore[union-attr]
+    for set_name, named in sorted(uri_eras_of.items()):
+        if len(named) == 1 and era not in named:
+            (only,) = named
+            set_uses = [u for u in predeclared if classify_uri(u.uri).property_set == set_name]  # type: ignore[union-attr]
+            if all(check_use(only, u) is None for u in set_uses):
+                set_eras[set_name] = only
     remaining: list[tuple[HrefUse, str]] = []
     by_set: dict[str, list[tuple[HrefUse, str]]] = {}
     for use, why in problems(era):
-        by_set.setdefault(classify_uri(use.uri).property_set, []).append((use, why))  # type: ignore[union-attr]
+        set_name = classify_uri(use.uri).property_set  # type: ignore[union-attr]
+        if set_name in set_eras:
+            continue
+        by_set.setdefault(set_name, []).append((use, why))
     for set_name, failing in by_set.items():
         set_uses = [u for u in predeclared if classify_uri(u.uri).property_set == set_name]  # type: ignore[union-attr]
         other = next((e for e in nearest if all(check_use(e, u) is None for u in set_uses)), None)

@@ -815,3 +815,18 @@ def test_gc_is_restored_and_foreign_frozen_objects_are_left_alone() -> None:
         assert gc.get_freeze_count() == frozen and kept
     finally:
         gc.unfreeze()
+
+
+def test_a_set_under_an_era_specific_uri_is_decoded_in_that_era() -> None:
+    """A set written in an older layout under that era's own URI form (org.osate.workspace) is
+    decoded in that era even when its positions would also decode in the file's era."""
+    from rosaadl.importers.osate_eras import HrefUse, choose_era, predeclared_uri
+
+    current = predeclared_uri("current", "Timing_Properties")
+    older = predeclared_uri("2017-2020", "AADL_Project")
+    assert "org.osate.workspace" in older
+    # ms: the same literal at the same place in both eras, so only the URI form tells
+    uses = [HrefUse(older, "/0/@ownedPropertyType.16/@ownedLiteral.3", "unit", "Timing_Properties::Period")]
+    choice = choose_era(uses, [current])
+    assert choice.era == "current"
+    assert choice.set_eras.get("AADL_Project") == "2017-2020"
