@@ -107,19 +107,19 @@ class FastFactory:
         helper ``allInstances()`` iterates): that registry costs as much as the object itself
         and nothing in rosaadl reads it. :meth:`register` adds objects to it when wanted.
         """
+        # attribute by attribute: Python keeps them in the class's shared-key layout, which is
+        # about twice as fast as assigning a fresh ``__dict__``
         obj = _object_new(cls)
-        obj.__dict__ = {
-            "_internal_id": None,
-            "_isset": InternalSet(),
-            "_container": None,
-            "_containment_feature": None,
-            "_eresource": None,
-            "listeners": [],
-            "_eternal_listener": [],
-            "_inverse_rels": set(),
-            "_staticEClass": False,
-            "dyn_inst": obj,
-        }
+        obj._internal_id = None
+        obj._isset = InternalSet()
+        obj._container = None
+        obj._containment_feature = None
+        obj._eresource = None
+        obj.listeners = []
+        obj._eternal_listener = []
+        obj._inverse_rels = set()
+        obj._staticEClass = False
+        obj.dyn_inst = obj
         return obj
 
     @staticmethod
@@ -132,14 +132,12 @@ class FastFactory:
     def set_value(obj: EObject, slot: FeatureSlot, value: Any) -> None:
         """Set a single-valued attribute, or a non-containment reference to ``value``."""
         ev = _evalue_new(EValue)
-        ev.__dict__ = {
-            "owner": obj,
-            "feature": slot.feature,
-            "is_ref": slot.is_ref,
-            "is_cont": False,
-            "generic_type": None,
-            "_value": value,
-        }
+        ev.owner = obj
+        ev.feature = slot.feature
+        ev.is_ref = slot.is_ref
+        ev.is_cont = False
+        ev.generic_type = None
+        ev._value = value
         d = obj.__dict__
         d[slot.name] = ev
         d["_isset"][slot.feature] = None
@@ -151,14 +149,12 @@ class FastFactory:
         """Set a single-valued containment reference."""
         feature = slot.feature
         ev = _evalue_new(EValue)
-        ev.__dict__ = {
-            "owner": obj,
-            "feature": feature,
-            "is_ref": True,
-            "is_cont": True,
-            "generic_type": None,
-            "_value": child,
-        }
+        ev.owner = obj
+        ev.feature = feature
+        ev.is_ref = True
+        ev.is_cont = True
+        ev.generic_type = None
+        ev._value = child
         d = obj.__dict__
         d[slot.name] = ev
         d["_isset"][feature] = None
