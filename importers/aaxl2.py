@@ -125,6 +125,13 @@ def _qualified_name(fragment: str) -> str:
     return f"{head}::{local}"
 
 
+def _name_of(uri: str, fragment: str) -> str:
+    """A link as we keep it: ``P::L.i`` for a fragment by qualified name, else ``uri#fragment``."""
+    if not fragment or _is_positional(fragment):
+        return f"{uri}#{fragment}"
+    return _qualified_name(fragment)
+
+
 def _is_positional(fragment: str) -> bool:
     return fragment.startswith("/") or fragment.startswith("@")
 
@@ -480,11 +487,22 @@ class _Reader:
             "xsi:type",
         )
 
-    def classifier_name(self, element: etree._Element) -> str:
-        uri, frag = self.href(element)
-        if not frag or _is_positional(frag):
-            return f"{uri}#{frag}"
-        return _qualified_name(frag)
+    def link_name(self, element: etree._Element) -> str:
+        return _name_of(*self.href(element))
+
+    def link(self, el: etree._Element, tag: str, owner: str) -> tuple[str, str] | None:
+        """(uri, fragment) of the link ``tag`` of ``el``: a child element, or else the attribute
+        form EMF also writes; None when there is neither."""
+        target = None
+        for child in el:
+            if child.tag == tag:
+                target = self.href(child)
+            else:
+                self.unknown(child, owner)
+        if target is None and el.get(tag) is not None:
+            _type, uri, frag = _split_ref_attribute(el.get(tag))
+            target = (uri, frag)
+        return target
 
     def ref_later(self, obj, feature, element, attribute, *, many=False, names_of: str | None = None) -> None:
         """Resolve reference ``attribute`` into ``feature`` once every object exists.
@@ -579,7 +597,7 @@ class _Reader:
                 if child.get(_XSI_TYPE) is not None:  # 2014's systemImplementation has none
                     self.check_link_type(child, _CLASSIFIER_TYPES)
                 if classifier is None or tag != "classifier":
-                    classifier = self.classifier_name(child)
+                    classifier = self.link_name(child)
             elif tag == "flowSpecification":
                 lists.setdefault(tag, []).append(self.flow_specification(child))
             elif tag == "endToEndFlow":
@@ -712,9 +730,7 @@ class _Reader:
         for child in el:
             if child.tag == "connection":
                 self.check_link_type(child, _CONNECTION_TYPES)
-                uri, frag = self.href(child)
-                text = _qualified_name(frag) if frag and not _is_positional(frag) else f"{uri}#{frag}"
-                fast.set_value(obj, f["ConnectionReference.connection"], text)
+                fast.set_value(obj, f["ConnectionReference.connection"], self.link_name(child))
             else:
                 self.unknown(child, "connectionReference")
         return obj
@@ -948,22 +964,12 @@ class _Reader:
 
     def _named(self, el, prop, field_href) -> EObject:
         obj = self.fast.new(self.cls["NamedValue"])
-        target = None
-        for child in el:
-            if child.tag == "namedValue":
-                target = self.href(child)
-            else:
-                self.unknown(child, "NamedValue")
-        if target is None and el.get("namedValue") is not None:
-            _type, uri, frag = _split_ref_attribute(el.get("namedValue"))
-            target = (uri, frag)
+        target = self.link(el, "namedValue", "NamedValue")
         if target is None:
             raise self.error("a named value names nothing (expected a namedValue reference)", el)
         uri, frag = target
-        if frag and not _is_positional(frag):
-            name = _qualified_name(frag)
-        else:
-            name = f"{uri}#{frag}"
+        name = _name_of(uri, frag)
+        if not frag or _is_positional(frag):
             self.literal_use((uri, frag, "enum", prop, field_href), obj, "name")
         self.fast.set_value(obj, self.f["NamedValue.name"], name)
         return obj
@@ -1029,17 +1035,10 @@ class _Reader:
 
     def _classifier(self, el, prop, field_href) -> EObject:
         obj = self.fast.new(self.cls["ClassifierValue"])
-        name = None
-        for child in el:
-            if child.tag == "classifier":
-                name = self.classifier_name(child)
-            else:
-                self.unknown(child, "ClassifierValue")
-        if name is None and el.get("classifier") is not None:
-            _type, uri, frag = _split_ref_attribute(el.get("classifier"))
-            name = _qualified_name(frag) if frag and not _is_positional(frag) else f"{uri}#{frag}"
-        if name is None:
+        target = self.link(el, "classifier", "ClassifierValue")
+        if target is None:
             raise self.error("a classifier value names no classifier", el)
+        name = _name_of(*target)
         self.fast.set_value(obj, self.f["ClassifierValue.classifier"], name)
         return obj
 
@@ -1054,11 +1053,8 @@ class _Reader:
                     nxt = child
                 elif child.tag == "namedElement":
                     uri, frag = self.href(child)
-                    steps.append(
-                        _qualified_name(frag).rpartition("::")[2]
-                        if frag and not _is_positional(frag)
-                        else f"{uri}#{frag}"
-                    )
+                    named = _name_of(uri, frag)
+                    steps.append(named if named.startswith(f"{uri}#") else named.rpartition("::")[2])
                 elif child.tag == "arrayRange":
                     continue
                 else:
