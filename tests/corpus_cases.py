@@ -36,3 +36,35 @@ OSATE_DECLARATIVE_DIRS = (
     "ex-issue411-declarative-propertyset",
     "smaccm-geofence-declarative",
 )
+
+#: ROSMOD projects of ``rosmod/`` (textual v0.1–v0.4 and the AGSE robot), as folders or files
+ROSMOD_PROJECTS = (
+    "textual-v0.3/agse",
+    "textual-v0.3/client-server",
+    "textual-v0.3/integration",
+    "textual-v0.3/isorc2016",
+    "textual-v0.3/ksp_rover_controller",
+    "textual-v0.3/long-running-operation",
+    "textual-v0.3/periodic-timers",
+    "textual-v0.3/publish-subscribe",
+    "textual-v0.3/sequential-leds",
+    "textual-v0.3/ten-components",
+    "textual-v0.3/three-components",
+    "textual-v0.3/timer",
+    "textual-v0.3/timer_example",
+    "textual-v0.3/trajectory-planner",
+    "textual-v0.3/uav",
+    "textual-v0.3/roscpp/ksp_rover_control",
+    "textual-v0.3/roscpp/ksp_stearwing_control",
+    "textual-v0.3/roscpp/pub_sub_cycle_example",
+    "textual-v0.3/roscpp/pub_sub_traffic_gen",
+    "textual-v0.3/roscpp/routing",
+    "textual-v0.3/roscpp/tg_test",
+    "legacy-v0.2/sample",
+    "legacy-v0.1/input.rosml",
+    "agse2015/agse_rosmod_project",
+    "agse2015/agse_rosmod_v3",
+)
+
+#: WebGME seeds of ``rosmod/webgme/`` holding projects
+WEBGME_SEEDS = ("samples-2016-06-13_noTLC.webgmex", "samples-2018-05-19_noTLC.webgmex")

@@ -9,6 +9,7 @@ from decimal import Decimal
 from pathlib import Path
 
 import pytest
+from corpus_cases import ROSMOD_PROJECTS, WEBGME_SEEDS
 
 from rosaadl import model
 from rosaadl.errors import Diagnostic, ExportError
@@ -294,33 +295,7 @@ def test_bad_port_type_is_refused(project):
 
 # --------------------------------------------------------------------------- the corpus
 
-CORPUS_PROJECTS = [
-    "textual-v0.3/agse",
-    "textual-v0.3/client-server",
-    "textual-v0.3/integration",
-    "textual-v0.3/isorc2016",
-    "textual-v0.3/ksp_rover_controller",
-    "textual-v0.3/long-running-operation",
-    "textual-v0.3/periodic-timers",
-    "textual-v0.3/publish-subscribe",
-    "textual-v0.3/sequential-leds",
-    "textual-v0.3/ten-components",
-    "textual-v0.3/three-components",
-    "textual-v0.3/timer",
-    "textual-v0.3/timer_example",
-    "textual-v0.3/trajectory-planner",
-    "textual-v0.3/uav",
-    "textual-v0.3/roscpp/ksp_rover_control",
-    "textual-v0.3/roscpp/ksp_stearwing_control",
-    "textual-v0.3/roscpp/pub_sub_cycle_example",
-    "textual-v0.3/roscpp/pub_sub_traffic_gen",
-    "textual-v0.3/roscpp/routing",
-    "textual-v0.3/roscpp/tg_test",
-    "legacy-v0.2/sample",
-    "legacy-v0.1/input.rosml",
-    "agse2015/agse_rosmod_project",
-    "agse2015/agse_rosmod_v3",
-]
+CORPUS_PROJECTS = list(ROSMOD_PROJECTS)
 
 
 @functools.cache
@@ -348,7 +323,7 @@ def test_corpus_v03_project_needs_no_normalisation_but_file_places(corpus, tmp_p
     assert all(".path:" in d for d in diffs), diffs
 
 
-@pytest.mark.parametrize("archive", ["samples-2016-06-13_noTLC.webgmex", "samples-2018-05-19_noTLC.webgmex"])
+@pytest.mark.parametrize("archive", WEBGME_SEEDS)
 def test_corpus_webgme_projects_read_back_equal(corpus, archive, tmp_path, caplog):
     caplog.set_level(logging.ERROR)
     for index, project in enumerate(webgme_projects(str(corpus), archive)):
