@@ -551,13 +551,7 @@ V2_TASK_FIELDS = (
     _f("activation_rule", "Activation_Rule", "str"),
 )
 V2_ADDRESS_SPACE_FIELDS = ADDRESS_SPACE_FIELDS[:4]
-V2_RESOURCE_FIELDS = (
-    _f("state", "Data_Concurrency_State", "int"),
-    _f("size", "Resource_Size", "int"),
-    _f("address", "Resource_Address", "int"),
-    Field("priority", PRIORITY, "int"),
-    _f("priority_assignment", "Priority_Assignment", "enum:priority_assignment"),
-)
+V2_RESOURCE_FIELDS = RESOURCE_FIELDS  # Cheddar 2 resources have the same fields
 V2_BUFFER_FIELDS = (
     _f("qs", "Queueing_System_Type", "str"),
     _f("size", "Buffer_Size", "int"),

@@ -30,6 +30,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from pyecore.ecore import EObject
 
@@ -52,6 +53,8 @@ __all__ = [
     "unsized_reason",
     "standard_message",
     "fields_to_model",
+    "fill_message",
+    "fill_service",
     "field_from_model",
     "message_data_size",
 ]
@@ -586,6 +589,22 @@ def unsized_reason(spec: MessageSpec | Sequence[FieldSpec], resolve: Resolver | 
 
 
 # --------------------------------------------------------------------------- model
+
+
+def fill_message(message: EObject, **where: Any) -> None:
+    """Parse a ``rosmod.Message``'s ``definition`` into its ``fields`` (``where``: the keyword
+    arguments of :func:`parse_msg` — package, filename, path). Raises :class:`RosMessageError`."""
+    if message.definition:
+        spec = parse_msg(message.definition, name=message.name, **where)
+        message.fields.extend(fields_to_model(spec.fields))
+
+
+def fill_service(service: EObject, **where: Any) -> None:
+    """Parse a ``rosmod.Service``'s ``definition`` into its request and response fields."""
+    if service.definition:
+        spec = parse_srv(service.definition, name=service.name, **where)
+        service.requestFields.extend(fields_to_model(spec.request.fields))
+        service.responseFields.extend(fields_to_model(spec.response.fields))
 
 
 def fields_to_model(fields: Iterable[FieldSpec]) -> list[EObject]:

@@ -916,13 +916,8 @@ def _load_interfaces(
                 package.services.append(obj)
             info.sources[id(obj)] = shown
             try:
-                if kind == "msg":
-                    spec = ros_msg.parse_msg(text, name=name, package=pkg_name, filename=shown)
-                    obj.fields.extend(ros_msg.fields_to_model(spec.fields))
-                else:
-                    sspec = ros_msg.parse_srv(text, name=name, package=pkg_name, filename=shown)
-                    obj.requestFields.extend(ros_msg.fields_to_model(sspec.request.fields))
-                    obj.responseFields.extend(ros_msg.fields_to_model(sspec.response.fields))
+                fill = ros_msg.fill_message if kind == "msg" else ros_msg.fill_service
+                fill(obj, package=pkg_name, filename=shown)
             except ParseError as exc:
                 ctx.error(exc)
     for kind in ("abl", "pnp"):
@@ -1652,18 +1647,10 @@ def _read_v04(text: str, shown: str, rel: str, project: EObject, ctx: _Context) 
                             name=text_or_none(attr(el, "name")),
                             definition=text_or_none(attr(el, "definition")),
                         )
-                        if msg.definition:
-                            try:
-                                spec = ros_msg.parse_msg(
-                                    msg.definition,
-                                    name=msg.name,
-                                    package=pkg.name,
-                                    filename=shown,
-                                    path=where,
-                                )
-                                msg.fields.extend(ros_msg.fields_to_model(spec.fields))
-                            except ros_msg.RosMessageError as exc:
-                                ctx.error(exc)
+                        try:
+                            ros_msg.fill_message(msg, package=pkg.name, filename=shown, path=where)
+                        except ros_msg.RosMessageError as exc:
+                            ctx.error(exc)
                         pkg.messages.append(msg)
                     elif k == "Service":
                         srv = _new(
@@ -1671,19 +1658,10 @@ def _read_v04(text: str, shown: str, rel: str, project: EObject, ctx: _Context) 
                             name=text_or_none(attr(el, "name")),
                             definition=text_or_none(attr(el, "definition")),
                         )
-                        if srv.definition:
-                            try:
-                                sspec = ros_msg.parse_srv(
-                                    srv.definition,
-                                    name=srv.name,
-                                    package=pkg.name,
-                                    filename=shown,
-                                    path=where,
-                                )
-                                srv.requestFields.extend(ros_msg.fields_to_model(sspec.request.fields))
-                                srv.responseFields.extend(ros_msg.fields_to_model(sspec.response.fields))
-                            except ros_msg.RosMessageError as exc:
-                                ctx.error(exc)
+                        try:
+                            ros_msg.fill_service(srv, package=pkg.name, filename=shown, path=where)
+                        except ros_msg.RosMessageError as exc:
+                            ctx.error(exc)
                         pkg.services.append(srv)
                     elif k == "Component":
                         comp = _new(

@@ -702,8 +702,7 @@ class _Mapper:
         text = _text(node.attribute("Definition"))
         msg = model.new("rosmod.Message", name=node.name, definition=text)
         try:
-            spec = ros_msg.parse_msg(text, name=node.name, package=package)
-            msg.fields.extend(ros_msg.fields_to_model(spec.fields))
+            ros_msg.fill_message(msg, package=package)
         except ros_msg.RosMessageError as exc:
             self.definition_errors(node, exc)
         self.by_path[node.path] = msg
@@ -713,9 +712,7 @@ class _Mapper:
         text = _text(node.attribute("Definition"))
         srv = model.new("rosmod.Service", name=node.name, definition=text)
         try:
-            spec = ros_msg.parse_srv(text, name=node.name, package=package)
-            srv.requestFields.extend(ros_msg.fields_to_model(spec.request.fields))
-            srv.responseFields.extend(ros_msg.fields_to_model(spec.response.fields))
+            ros_msg.fill_service(srv, package=package)
         except ros_msg.RosMessageError as exc:
             self.definition_errors(node, exc)
         self.by_path[node.path] = srv
