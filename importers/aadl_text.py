@@ -1627,7 +1627,7 @@ def _raise_errors(errors: list[Diagnostic], kind: type[RosaadlError], what: str)
     else:
         listing = "\n".join(f"  {d.location}: {d.message}" for d in errors)
         exc = kind(f"{first.message}\n{len(errors)} {what}:\n{listing}", first.location)
-    exc.diagnostics = list(errors)  # type: ignore[attr-defined]
+    exc.errors = list(errors)
     raise exc
 
 
@@ -1666,7 +1666,7 @@ def read_string(
     ``AadlModel`` when None) and return the model.
 
     Raises :class:`AadlSyntaxError` (syntax, encoding, literals out of range) or
-    :class:`ValidationError` (the legality rules checked while building; ``.diagnostics`` lists
+    :class:`ValidationError` (the legality rules checked while building; ``.errors`` lists
     every one found), both located; nothing is added to ``model`` then.
     Warnings are logged and appended to ``warnings`` when given.  Names are not resolved here:
     :func:`read_files` does that across files.
@@ -1758,7 +1758,7 @@ def read_files(
     (:class:`rosaadl.resolution.Resolver`, then units, enumeration literals and record fields
     of every property value against its property's type); every error found is reported in
     one located :class:`NameResolutionError` (the first one's location, all of them in the
-    message and in ``.diagnostics``); warnings (a property set that is not loaded, a missing
+    message and in ``.errors``); warnings (a property set that is not loaded, a missing
     ``with`` clause, a name declared twice, prototypes) are logged and appended to ``warnings``.
     ``check=False`` reads without resolving (files that name packages not given, for example).
     """

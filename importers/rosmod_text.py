@@ -93,11 +93,10 @@ class RosmodImportError(ImportFormatError):
     stage = "import"
 
     def __init__(self, errors: Sequence[RosaadlError]) -> None:
-        self.errors: list[RosaadlError] = list(errors)
-        first = self.errors[0]
-        more = len(self.errors) - 1
+        first = errors[0]
+        more = len(errors) - 1
         message = first.message if not more else f"{first.message} (and {more} more)"
-        super().__init__(message, first.location)
+        super().__init__(message, first.location, errors=list(errors))
 
     def __str__(self) -> str:
         return "\n".join(str(e) for e in self.errors)

@@ -71,7 +71,10 @@ class Diagnostic:
 
 
 class RosaadlError(Exception):
-    """Root of every error rosaadl reports to a user."""
+    """Root of every error rosaadl reports to a user.
+
+    An error that stands for several problems found together lists them in ``errors``.
+    """
 
     stage = "model"
 
@@ -84,11 +87,14 @@ class RosaadlError(Exception):
         line: int | None = None,
         column: int | None = None,
         path: str | None = None,
+        errors: list[RosaadlError | Diagnostic] | None = None,
     ) -> None:
         if location is None:
             location = Location(file=file, line=line, column=column, path=path)
         self.message = message
         self.location = location
+        #: every located problem, when one error reports several (a reader that collects them)
+        self.errors: list[RosaadlError | Diagnostic] = list(errors) if errors else []
         super().__init__(str(self))
 
     def __str__(self) -> str:

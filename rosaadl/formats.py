@@ -161,18 +161,15 @@ class _Collected(RosaadlError):
     """Several located problems found by one reader, raised together."""
 
     def __init__(self, problems: list[RosaadlError | Diagnostic]) -> None:
-        self.errors = problems
         first = problems[0]
-        super().__init__(f"{len(problems)} problem(s); first: {first}", getattr(first, "location", None))
+        super().__init__(
+            f"{len(problems)} problem(s); first: {first}", getattr(first, "location", None), errors=problems
+        )
 
 
 def expand_errors(exc: RosaadlError) -> list[RosaadlError | Diagnostic]:
     """The individual located errors behind ``exc`` (readers that collect raise them together)."""
-    for attribute in ("errors", "diagnostics"):  # readers that collect keep the list under one of these
-        inner = getattr(exc, attribute, None)
-        if isinstance(inner, (list, tuple)) and inner:
-            return list(inner)
-    return [exc]
+    return list(exc.errors) or [exc]
 
 
 def check_file(path: Path, **options: Any) -> tuple[list[RosaadlError | Diagnostic], list[Diagnostic]]:

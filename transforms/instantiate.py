@@ -388,9 +388,7 @@ class Instantiator:
                 + ("; ..." if len(self._errors) > 6 else "")
                 + ")"
             )
-        error = NameResolutionError(message, first.location)
-        error.diagnostics = list(self._errors)  # type: ignore[attr-defined]
-        raise error
+        raise NameResolutionError(message, first.location, errors=self._errors)
 
     # ------------------------------------------------------------------ run
 

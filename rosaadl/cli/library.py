@@ -24,6 +24,7 @@ import click
 
 from rosaadl.cli.common import Options, Report, pass_options
 from rosaadl.errors import Diagnostic, RosaadlError, UsageError
+from rosaadl.formats import expand_errors
 
 __all__ = ["command"]
 
@@ -42,17 +43,8 @@ def _options(options: Options, fmt: str | None) -> Options:
     return dataclasses.replace(options, format=fmt) if fmt else options
 
 
-def _expand(exc: RosaadlError) -> list[RosaadlError | Diagnostic]:
-    """The located problems behind one error (readers and profiles raise them together)."""
-    for attribute in ("errors", "diagnostics"):
-        inner = getattr(exc, attribute, None)
-        if isinstance(inner, (list, tuple)) and inner:
-            return list(inner)
-    return [exc]
-
-
 def _fail(report: Report, options: Options, exc: RosaadlError) -> None:
-    for error in _expand(exc):
+    for error in expand_errors(exc):
         report.error(error)
     sys.exit(report.emit(options))
 

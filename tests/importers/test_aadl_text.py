@@ -805,7 +805,7 @@ def test_all_legality_errors_of_a_text_are_reported_together() -> None:
     )
     with pytest.raises(ValidationError) as info:
         read_string(_pkg(body), "many.aadl")
-    assert len(info.value.diagnostics) == 3
+    assert len(info.value.errors) == 3
     assert "3 errors" in info.value.message and "many.aadl:4:" in info.value.message
 
 
@@ -911,9 +911,9 @@ def test_wrong_units_and_literals_are_located_errors(tmp_path: Path) -> None:
     path = _write(tmp_path, "bad_values.aadl", WRONG_UNITS)
     with pytest.raises(NameResolutionError) as info:
         read_files([path])
-    found = [(d.location.line, d.location.column, d.message) for d in info.value.diagnostics]
+    found = [(d.location.line, d.location.column, d.message) for d in info.value.errors]
     assert [(line, column) for line, column, _ in found] == [(5, 17), (6, 19), (7, 28), (8, 19), (9, 41)]
-    assert all(d.location.file == str(path) for d in info.value.diagnostics)
+    assert all(d.location.file == str(path) for d in info.value.errors)
     assert "kg is not a unit of AADL_Project::Time_Units" in found[0][2]
     assert "needs a unit" in found[1][2]
     assert "Periodical is not a literal" in found[2][2]
@@ -927,7 +927,7 @@ def test_cyclic_extends_is_a_located_error(tmp_path: Path) -> None:
     path = _write(tmp_path, "cyclic.aadl", text)
     with pytest.raises(NameResolutionError) as info:
         read_files([path])
-    first = info.value.diagnostics[0]
+    first = info.value.errors[0]
     assert "cycle" in first.message and (first.location.file, first.location.line) == (str(path), 3)
 
 
@@ -941,7 +941,7 @@ def test_unresolved_names_are_reported_together(tmp_path: Path) -> None:
     warnings: list = []
     with pytest.raises(NameResolutionError) as info:
         read_files([path], warnings=warnings)
-    assert [d.location.line for d in info.value.diagnostics] == [4, 5]
+    assert [d.location.line for d in info.value.errors] == [4, 5]
     assert any("Missing_Pkg" in w.message for w in warnings)
     # without the check, the same files read
     m = read_files([path], check=False)
@@ -1151,7 +1151,7 @@ def test_corpus_projects_resolve(corpus: Path, folder: str, options: dict, incom
     names, reason = incomplete
     with pytest.raises(NameResolutionError) as info:
         read_files([path], **options)
-    others = [str(d) for d in info.value.diagnostics if not any(n in d.message for n in names)]
+    others = [str(d) for d in info.value.errors if not any(n in d.message for n in names)]
     assert others == [], "errors not explained by the missing sources:\n" + "\n".join(others)
     pytest.skip(f"sources incomplete: {reason}")
 
