@@ -1708,9 +1708,12 @@ class _Writer:
 
     def report(self) -> None:
         for set_name, era in sorted(self.set_eras.items()):
+            spelled = next(
+                (n for n in osate_eras.table(era).property_sets() if n.lower() == set_name), set_name
+            )
             self.warn(
-                f"references into OSATE's {set_name} follow its {era} layout: a value exists only there "
-                "(OSATE has since renamed it; today's OSATE reads the renamed literal at that place)"
+                f"references into OSATE's {spelled} follow its {era} layout: a value "
+                "exists only there (OSATE has since renamed it, and today's OSATE does not resolve it)"
             )
         for what, count in sorted(self.missing.items()):
             self.warn(

@@ -862,6 +862,14 @@ def check_use(era: str, use: HrefUse) -> str | None:
     if literal is None:
         return f"no literal at {path} in {pre.property_set}"
     prop = _context_property(era, use.property)
+    if (
+        prop is not None
+        and prop.rpartition("::")[0].lower() == pre.property_set.lower()
+        and tab.property_index(prop) is None
+    ):
+        # a literal of the set that declares the property, which this era's copy of the set does
+        # not declare (ARINC653::Memory_Type is Memory_Kind today): the positions are another era's
+        return f"{prop} is not declared in the {era} {prop.rpartition('::')[0]}"
     if literal.kind != _KIND_OF_ROLE.get(use.role):
         return f"{path} in {pre.property_set} is a {literal.kind} of {literal.type_name}, not a {use.role}"
     if use.role in ("enum", "field") and not _property_matches(literal, prop):

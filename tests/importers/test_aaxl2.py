@@ -830,3 +830,28 @@ def test_a_set_under_an_era_specific_uri_is_decoded_in_that_era() -> None:
     choice = choose_era(uses, [current])
     assert choice.era == "current"
     assert choice.set_eras.get("AADL_Project") == "2017-2020"
+
+
+def test_a_literal_of_a_property_the_era_does_not_declare_is_decoded_where_it_is_declared() -> None:
+    """ARINC653's URI is the same in the 2017-2020 and current eras, but its Memory_Type (with
+    literal Data_Memory) is Memory_Kind (Memory_Data) today: a named value of Memory_Type in a
+    current-era file is decoded with the 2017-2020 layout, not as today's literal at that place."""
+    from rosaadl.importers.osate_eras import HrefUse, check_use, choose_era, predeclared_uri, table
+
+    uri = predeclared_uri("current", "ARINC653")
+    assert uri == predeclared_uri("2017-2020", "ARINC653")
+    path = table("2017-2020").literal_path("ARINC653", "ARINC653::Supported_Memory_Type", "Data_Memory")
+    assert path is not None
+    use = HrefUse(uri, "/0/" + path, "enum", "ARINC653::Memory_Type")
+    assert "not declared in the current ARINC653" in (check_use("current", use) or "")
+    assert check_use("2017-2020", use) is None
+    choice = choose_era([use], [predeclared_uri("current", "Timing_Properties")])
+    assert choice.era == "current" and choice.era_of("ARINC653") == "2017-2020" and not choice.problems
+    # a unit of AADL_Project qualifying a property the era lacks still decodes by its units type
+    unit = HrefUse(
+        predeclared_uri("2014", "AADL_Project"),
+        "//@ownedPropertyType.11/@ownedLiteral.1",
+        "unit",
+        "Memory_Properties::Code_Size",
+    )
+    assert check_use("2014", unit) is None
