@@ -54,6 +54,53 @@ COMPATIBILITY_MODES = ("current", "osate-2.0")
 #: OSATE's default limit on the number of system operation modes.
 MAX_SYSTEM_OPERATION_MODES = 1000
 
+# The order in which OSATE's Xtext model lists an implementation's subcomponents: its
+# ownedSubcomponent union concatenates one list per category, in aadl2.ecore's order for the
+# implementation's class (ComponentImplementation's abstract list first).
+_SUBCOMPONENT_ORDER: dict[str, tuple[str, ...]] = {
+    "abstract": (
+        "abstract",
+        "bus",
+        "data",
+        "device",
+        "memory",
+        "process",
+        "processor",
+        "system",
+        "subprogram",
+        "subprogram group",
+        "thread",
+        "thread group",
+        "virtual bus",
+        "virtual processor",
+    ),
+    "bus": ("abstract", "virtual bus"),
+    "data": ("abstract", "data", "subprogram"),
+    "device": ("abstract", "bus", "data", "virtual bus"),
+    "memory": ("abstract", "bus", "memory", "virtual bus"),
+    "process": ("abstract", "data", "subprogram", "subprogram group", "thread", "thread group"),
+    "processor": ("abstract", "bus", "memory", "virtual bus", "virtual processor"),
+    "subprogram": ("abstract", "data", "subprogram"),
+    "subprogram group": ("abstract", "subprogram", "subprogram group", "data"),
+    "system": (
+        "abstract",
+        "bus",
+        "data",
+        "device",
+        "memory",
+        "process",
+        "processor",
+        "subprogram",
+        "subprogram group",
+        "system",
+        "virtual bus",
+        "virtual processor",
+    ),
+    "thread": ("abstract", "subprogram group", "subprogram", "data"),
+    "thread group": ("abstract", "data", "thread", "thread group", "subprogram", "subprogram group"),
+    "virtual bus": ("abstract", "virtual bus"),
+    "virtual processor": ("abstract", "virtual bus", "virtual processor"),
+}
 _ENDING = frozenset({"thread", "device", "processor", "virtual processor"})
 _SHARED = frozenset({"data", "bus", "virtual bus", "subprogram", "subprogram group"})
 _ARRAY_FEATURE_OWNERS = frozenset({"abstract", "device", "memory", "processor", "system", "thread"})
@@ -509,7 +556,7 @@ class Instantiator:
             ci.mode_list.append(mi)
         factory.extend(ci.obj, "modeInstances", ci.mode_list)
         if impl is not None:
-            for sub in resolver.subcomponents(impl):
+            for sub in self._osate_order(impl, resolver.subcomponents(impl)):
                 self._instantiate_subcomponent(ci, sub, ancestry)
             factory.extend(ci.obj, "componentInstances", [child.obj for child in ci.children])
         if ci.node.ctype is not None or (classifier is not None and _is(classifier, "ComponentType")):
@@ -543,6 +590,26 @@ class Instantiator:
                 return None
             fi = fi.child(segment.key)
         return fi
+
+    def _osate_order(self, impl: EObject, subs: list[EObject]) -> list[EObject]:
+        """Subcomponents in the order OSATE instantiates them (getAllSubcomponents): the farthest
+        ancestor's first, each implementation's by category (``_SUBCOMPONENT_ORDER``; OSATE 2.0
+        kept the declaration order), a refinement taking the place of the refined subcomponent
+        among its own implementation's."""
+        if len(subs) < 2:
+            return subs
+        chain = list(reversed(self.resolver.extends_chain(impl)))
+        level = {id(c): n for n, c in enumerate(chain)}
+
+        def key(item: tuple[int, EObject]) -> tuple[int, int, int]:
+            position, sub = item
+            owner = sub.eContainer()
+            order = () if self.legacy else _SUBCOMPONENT_ORDER.get(_lit(getattr(owner, "category", None)), ())
+            category = _lit(sub.category)
+            rank = order.index(category) if category in order else len(order)
+            return level.get(id(owner), len(chain)), rank, position
+
+        return [sub for _, sub in sorted(enumerate(subs), key=key)]
 
     def _instantiate_subcomponent(self, ci: _CI, sub: EObject, ancestry: list[EObject]) -> None:
         resolver = self.resolver

@@ -234,7 +234,7 @@ def test_document_head_namespaces_and_encoding(exported) -> None:
 def test_non_ascii_and_markup_are_character_references(exported) -> None:
     text = exported.data.decode("ascii")
     assert 'value="caf&#xE9; &amp; &lt;co> &quot;quoted&quot;&#x9;end"' in text
-    assert 'name="cpu1.net &lt;-> lan"' in text  # '>' stays as is, as EMF writes it
+    assert 'name="lan &lt;-> cpu1.net"' in text  # '>' stays as is, as EMF writes it
     again = loads_aaxl2(exported.data)
     assert own_property(again.root, "demo_props::Note") == 'caf\u00e9 & <co> "quoted"\tend'
 
@@ -254,7 +254,7 @@ def test_emf_defaults_are_left_out(exported) -> None:
     port = connections["a.w.outp -> b.w.inp"]
     assert port.get("kind") == "portConnection" and port.get("complete") == "true"
     assert "bidirectional" not in port.attrib
-    assert connections["cpu1.net <-> lan"].get("bidirectional") == "true"
+    assert connections["lan <-> cpu1.net"].get("bidirectional") == "true"
     assert "kind" not in connections["a.w.anyo -> b.w.anyi"].attrib  # a feature connection
     modes = {m.get("name"): m for m in root.iter("modeInstance")}
     assert modes["nominal"].get("initial") == "true" and "initial" not in modes["degraded"].attrib

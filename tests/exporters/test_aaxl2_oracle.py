@@ -72,13 +72,9 @@ KNOWN_DIFFERENCES: dict[str, dict[str, str]] = {
         "hrefs": "same renaming: the feature and connection instances are keyed by the old names",
     },
     "fmw-uav-v3": {
-        "connections": "OSATE names the 8 bidirectional bus access connections from the bus "
-        "(SBUS <-> FCTL.UARTA, MCMP.BUS_HW <-> MEM_HW.MCA, ...) whichever end the declaration names "
-        "first; our instantiation starts them at the access feature (FCTL.UARTA <-> SBUS, "
-        "MCMP.MEM_HW.MCA <-> BUS_HW)",
         "hrefs": "OSATE's file predates its SW.aadl: every SW classifier from position 9 on is 3 places "
         "later in OSATE's fragments (ownedClassifier.12, 14, ... 30 where the given SW.aadl, and our "
-        "count, have 9, 11, ... 27); and the access connections above are keyed by their names",
+        "count, have 9, 11, ... 27)",
     },
     "gtse-atsv-tier0": {
         "properties": "OSATE's file holds no property values at all (0 associations, although the "

@@ -237,7 +237,8 @@ def test_hierarchy_features_and_names():
     assert ws.instances[-1] is system
     assert system.name == "sys_i_Instance" and system.classifier == "Pkg::sys.i"
     assert system.category.name == "system"
-    assert [c.name for c in system.componentInstances] == ["p1", "p2", "cpu", "lan"]
+    # OSATE's order: an implementation's subcomponents by category (bus, process, processor)
+    assert [c.name for c in system.componentInstances] == ["lan", "p1", "p2", "cpu"]
     thread = model.find_instance(system, "p1.a")
     assert (thread.subcomponent, thread.classifier, list(thread.index)) == ("a", "Pkg::worker", [])
     assert str(thread.category.name) == "thread"
@@ -255,8 +256,9 @@ def test_hierarchy_features_and_names():
 
 def test_semantic_connections_cross_the_hierarchy():
     system = instantiate(pipeline(), "Pkg::sys.i")
-    # cpu comes before lan: the access connection is found from cpu.ba first
-    assert names(system) == ["a.o -> b.i", "a.o -> b.i", "cpu.ba <-> lan", "p1.b.o -> p2.a.i"]
+    # the bus lan comes before the processor cpu (OSATE's category order): the access connection
+    # is found from lan first, whichever end the declaration names first
+    assert names(system) == ["a.o -> b.i", "a.o -> b.i", "lan <-> cpu.ba", "p1.b.o -> p2.a.i"]
     across = next(c for c in system.connectionInstances if c.name == "p1.b.o -> p2.a.i")
     refs = across.connectionReferences
     assert [r.connection for r in refs] == ["cout", "k", "cin"]
@@ -272,8 +274,8 @@ def test_semantic_connections_cross_the_hierarchy():
     inner = model.find_instance(system, "p1").connectionInstances
     assert [c.name for c in inner] == ["a.o -> b.i"]
     access = next(c for c in system.connectionInstances if c.kind.name == "accessConnection")
-    assert access.bidirectional and access.source is model.find_instance(system, "cpu.ba")
-    assert access.destination is model.find_instance(system, "lan")
+    assert access.bidirectional and access.source is model.find_instance(system, "lan")
+    assert access.destination is model.find_instance(system, "cpu.ba")
 
 
 def test_property_values_on_instances():
@@ -719,3 +721,62 @@ def test_corpus_case_list_is_complete(corpus):
     with_instances = sorted(p.name for p in folder.iterdir() if any(p.rglob("*Instance.aaxl2")))
     assert with_instances == sorted(_CORPUS_CASES)
     assert os.sep not in "".join(_CORPUS_CASES)
+
+
+_ORDERED = """
+package Ordered
+public
+  bus net end net;
+  memory ram end ram;
+  processor cpu end cpu;
+  process proc end proc;
+  process implementation proc.fast end proc.fast;
+  system top end top;
+  system implementation top.base
+    subcomponents
+      app: process proc;
+      cpu1: processor cpu;
+      mem: memory ram;
+      lan: bus net;
+      other: process proc;
+  end top.base;
+  system implementation top.refined extends top.base
+    subcomponents
+      app: refined to process proc.fast;
+      cpu0: processor cpu;
+      can: bus net;
+  end top.refined;
+end Ordered;
+"""
+
+
+def test_subcomponents_are_instantiated_in_osate_s_order():
+    """OSATE's getAllSubcomponents: the farthest ancestor's subcomponents first, each
+    implementation's by category (aadl2.ecore's list order for its class), a refinement moved
+    to its refining implementation; OSATE 2.0 kept the declaration order of each implementation."""
+    from rosaadl.importers.aadl_text import read_string
+
+    ws = read_string(_ORDERED, "ordered.aadl")
+    system = instantiate(ws, "Ordered::top.refined")
+    assert [c.name for c in system.componentInstances] == [
+        "lan",
+        "mem",
+        "other",
+        "cpu1",
+        "can",
+        "app",
+        "cpu0",
+    ]
+    assert model.find_instance(system, "app").classifier == "Ordered::proc.fast"
+    legacy = instantiate(
+        read_string(_ORDERED, "ordered.aadl"), "Ordered::top.refined", compatibility="osate-2.0"
+    )
+    assert [c.name for c in legacy.componentInstances] == [
+        "cpu1",
+        "mem",
+        "lan",
+        "other",
+        "app",
+        "cpu0",
+        "can",
+    ]
