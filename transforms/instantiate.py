@@ -2248,8 +2248,13 @@ class Instantiator:
         while stack:
             fi, chain, names = stack.pop()
             word = feature_category_word(fi.category)
-            classifier = fi.fgt if fi.fgt is not None else self.resolver.feature_classifier(fi.decl)
-            classifier_word = _classifier_word(classifier)
+            # OSATE 2.0 also let a feature take the properties of its classifier's category (a data
+            # port of data Integer takes an inherited Priority); OSATE today goes by the feature's
+            # own metaclass only (a bus access feature takes no Period)
+            classifier_word = ""
+            if self.legacy:
+                classifier = fi.fgt if fi.fgt is not None else self.resolver.feature_classifier(fi.decl)
+                classifier_word = _classifier_word(classifier)
             for key in keys:
                 if not self._accepts(key, "feature", word) and not (
                     classifier_word and self._accepts(key, "classifier", classifier_word)

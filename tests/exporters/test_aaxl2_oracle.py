@@ -82,9 +82,6 @@ KNOWN_DIFFERENCES: dict[str, dict[str, str]] = {
         "Actual_Processor_Binding => reference (processor1) applies to mdev",
     },
     "osate2-simple-control-modes": {
-        "properties": "OSATE gives no Period to the bus access features sensor1.canbusaccess, "
-        "sensor2.canbusaccess, actuator.canbusaccess; our instantiation inherits the device's "
-        "Period => 25 ms into them (Period applies to bus, the features' classifier category)",
         "hrefs": "OSATE's file predates its SimpleControlSystem.aadl: system SCS (its features power, "
         "force and modes operational, standby) is ownedClassifier.0 in OSATE's fragments and .2 in the "
         "given file (SCSDualPower and SCS.Phys were added before it)",

@@ -780,3 +780,44 @@ def test_subcomponents_are_instantiated_in_osate_s_order():
         "cpu0",
         "can",
     ]
+
+
+_FEATURE_APPLICABILITY = """
+package Applies
+public
+  with Timing_Properties, Thread_Properties;
+  bus can end can;
+  data msg end msg;
+  device sensor
+    features
+      canbus: requires bus access can;
+      sample: out data port msg;
+    properties
+      Period => 25 ms;
+      Priority => 5;
+  end sensor;
+  system top end top;
+  system implementation top.i
+    subcomponents
+      s: device sensor;
+      net: bus can;
+  end top.i;
+end Applies;
+"""
+
+
+def test_features_take_the_properties_that_apply_to_their_own_category(tmp_path):
+    """Period applies to bus, Priority to data: OSATE today gives neither to a bus access feature
+    or a data port (the feature's metaclass decides); OSATE 2.0 also went by the feature's
+    classifier, and the inherited values reached the features."""
+    from rosaadl.importers.aadl_text import read_files
+
+    source = tmp_path / "applies.aadl"
+    source.write_text(_FEATURE_APPLICABILITY)
+    current = instantiate(read_files([source]), "Applies::top.i")
+    canbus, sample = model.find_instance(current, "s.canbus"), model.find_instance(current, "s.sample")
+    assert property_value(model.find_instance(current, "s"), "Period") == Quantity(25, "ms")
+    assert property_value(canbus, "Period") is None and property_value(sample, "Priority") is None
+    legacy = instantiate(read_files([source]), "Applies::top.i", compatibility="osate-2.0")
+    assert property_value(model.find_instance(legacy, "s.canbus"), "Period") == Quantity(25, "ms")
+    assert property_value(model.find_instance(legacy, "s.sample"), "Priority") == 5
