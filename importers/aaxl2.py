@@ -357,6 +357,10 @@ class _Reader:
         self.ec, self.enums, self.cls, self.f = meta.eclasses, meta.enums, meta.classes, meta.slots
         self.enum_cache: dict[tuple[str, str], Any] = dict(meta.enum_literals)
         self.c_pa = self.cls["PropertyAssociation"]
+        self.c_modal = self.cls["ModalPropertyValue"]
+        self.s_pa_property = self.f["PropertyAssociation.property"]
+        self.c_int, self.c_real = self.cls["IntegerValue"], self.cls["RealValue"]
+        self.s_modal_value = self.f["ModalPropertyValue.value"]
         self.s_int_value, self.s_int_unit = self.f["IntegerValue.value"], self.f["IntegerValue.unit"]
         self.s_real_value, self.s_real_unit = self.f["RealValue.value"], self.f["RealValue.unit"]
         self.ids: dict[str, EObject] = {}
@@ -379,6 +383,11 @@ class _Reader:
         self.handler_cache: dict[str, Any] = {}
         self.link_types_ok: set[tuple[str | None, frozenset[str]]] = set()
         self.path_cache: dict[str, EObject] = {}
+        # a record field's (uri, fragment) → (the name kept for it, whether it is positional)
+        self.field_names: dict[tuple[str, str], tuple[str, bool]] = {}
+        # a named value's (uri, fragment) → (its name, whether it is positional)
+        self.named_values: dict[tuple[str, str], tuple[str, bool]] = {}
+        self.s_named_name = self.f["NamedValue.name"]
 
     # ------------------------------------------------------------------ helpers
 
@@ -558,7 +567,8 @@ class _Reader:
         f, fast = self.f, self.fast
         set_value = fast.set_value
         obj = fast.new(cls)
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name")
         if name is None:
             raise self.error("a component instance has no name", el)
@@ -629,35 +639,38 @@ class _Reader:
         f, fast = self.f, self.fast
         set_value = fast.set_value
         obj = fast.new(self.cls["FeatureInstance"])
-        self.register_id(obj, el)
-        name = el.get("name")
+        if self.has_ids:
+            self.register_id(obj, el)
+        get = el.get
+        name = get("name")
         if name is None:
             raise self.error("a feature instance has no name", el)
         set_value(obj, f["FeatureInstance.name"], name)
         set_value(obj, f["FeatureInstance.feature"], name)
-        category = el.get("category")
-        set_value(
-            obj,
-            f["FeatureInstance.category"],
-            self.enum("FeatureCategory", category or "dataPort", el, "category"),
-        )
-        direction = el.get("direction")
-        set_value(
-            obj,
-            f["FeatureInstance.direction"],
-            self.enum("DirectionType", direction or "in", el, "direction"),
-        )
-        index_text = el.get("index")
+        enum_cache = self.enum_cache
+        category = get("category") or "dataPort"
+        literal = enum_cache.get(("FeatureCategory", category))
+        if literal is None:
+            literal = self.enum("FeatureCategory", category, el, "category")
+        set_value(obj, f["FeatureInstance.category"], literal)
+        direction = get("direction") or "in"
+        literal = enum_cache.get(("DirectionType", direction))
+        if literal is None:
+            literal = self.enum("DirectionType", direction, el, "direction")
+        set_value(obj, f["FeatureInstance.direction"], literal)
+        index_text = get("index")
         index = self.int_text(index_text, el, "index") if index_text is not None else 0
-        if el.get("type") is not None:
+        if get("type") is not None:
             self.ref_later(obj, f["FeatureInstance.type"], el, "type")
         pas, subs = [], []
+        ok_types = self.link_types_ok
         for child in el:
             tag = child.tag
             if tag == "ownedPropertyAssociation":
                 pas.append(self.property_association(child))
             elif tag == "feature":
-                self.check_link_type(child, _FEATURE_TYPES)
+                if (child.get(_XSI_TYPE), _FEATURE_TYPES) not in ok_types:
+                    self.check_link_type(child, _FEATURE_TYPES)
                 self.href(child)
             elif tag == "featureInstance":
                 subs.append(self.feature_instance(child))
@@ -677,7 +690,8 @@ class _Reader:
         f, fast = self.f, self.fast
         set_value = fast.set_value
         obj = fast.new(self.cls["ConnectionInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name")
         if name is None:
             raise self.error("a connection instance has no name", el)
@@ -722,14 +736,24 @@ class _Reader:
     def connection_reference(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["ConnectionReference"])
-        self.register_id(obj, el)
-        for attribute in ("context", "source", "destination"):
-            if el.get(attribute) is None:
+        if self.has_ids:
+            self.register_id(obj, el)
+        pending = self.pending
+        for attribute, slot in (
+            ("context", f["ConnectionReference.context"]),
+            ("source", f["ConnectionReference.source"]),
+            ("destination", f["ConnectionReference.destination"]),
+        ):
+            text = el.get(attribute)
+            if text is None:
                 raise self.error(f"a connection reference has no {attribute}", el)
-            self.ref_later(obj, f[f"ConnectionReference.{attribute}"], el, attribute)
+            if text.strip():
+                pending.append((obj, slot, text, el, attribute, False, None))
+        ok_types = self.link_types_ok
         for child in el:
             if child.tag == "connection":
-                self.check_link_type(child, _CONNECTION_TYPES)
+                if (child.get(_XSI_TYPE), _CONNECTION_TYPES) not in ok_types:
+                    self.check_link_type(child, _CONNECTION_TYPES)
                 fast.set_value(obj, f["ConnectionReference.connection"], self.link_name(child))
             else:
                 self.unknown(child, "connectionReference")
@@ -738,7 +762,8 @@ class _Reader:
     def flow_specification(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["FlowSpecificationInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["FlowSpecificationInstance.name"], name)
         has_source, has_destination = el.get("source") is not None, el.get("destination") is not None
@@ -752,7 +777,8 @@ class _Reader:
     def end_to_end_flow(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["EndToEndFlowInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["EndToEndFlowInstance.name"], name)
         fast.set_value(obj, f["EndToEndFlowInstance.flow"], name)
@@ -763,7 +789,8 @@ class _Reader:
     def mode_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["ModeInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["ModeInstance.name"], name)
         fast.set_value(obj, f["ModeInstance.mode"], name)
@@ -775,7 +802,8 @@ class _Reader:
     def mode_transition(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["ModeTransitionInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         fast.set_value(obj, f["ModeTransitionInstance.name"], el.get("name") or "")
         self.ref_later(obj, f["ModeTransitionInstance.source"], el, "source")
         self.ref_later(obj, f["ModeTransitionInstance.destination"], el, "destination")
@@ -786,7 +814,8 @@ class _Reader:
     def system_operation_mode(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["SystemOperationMode"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         fast.set_value(obj, f["SystemOperationMode.name"], el.get("name") or "")
         self.ref_later(obj, f["SystemOperationMode.currentModes"], el, "currentMode", many=True)
         for child in el:
@@ -796,7 +825,8 @@ class _Reader:
     def annex_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["AnnexInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         fast.set_value(obj, f["AnnexInstance.name"], el.get("name") or "")
         text = etree.tostring(el, encoding="unicode", with_tail=False)
         fast.set_value(obj, f["AnnexInstance.text"], text)
@@ -829,7 +859,13 @@ class _Reader:
             if tag == "ownedValue":
                 value_elements.append(child)
             elif tag == "property":
-                prop = self.property_name(child.get("href"), obj, child)
+                href = child.get("href")
+                found = self.property_cache.get(href)
+                if found is not None and not found[1]:  # by name, seen before
+                    prop = found[0]
+                    fast.set_value(obj, self.s_pa_property, prop)
+                else:
+                    prop = self.property_name(href, obj, child)
             elif tag in _PA_IGNORED or not isinstance(tag, str):
                 continue
             else:
@@ -876,9 +912,10 @@ class _Reader:
             uses.append((obj, feature_name))
 
     def modal_value(self, el: etree._Element, prop: str | None) -> EObject:
-        f, fast = self.f, self.fast
-        obj = fast.new(self.cls["ModalPropertyValue"])
-        self.register_id(obj, el)
+        fast = self.fast
+        obj = fast.new(self.c_modal)
+        if self.has_ids:
+            self.register_id(obj, el)
         value = None
         for child in el:
             if child.tag == "ownedValue":
@@ -887,10 +924,15 @@ class _Reader:
                 self.unknown(child, "ownedValue")
         if value is None:
             raise self.error("a property value holds no ownedValue", el)
-        fast.set_child(obj, f["ModalPropertyValue.value"], value)
+        fast.set_child(obj, self.s_modal_value, value)
         if el.get("inMode"):
             self.ref_later(
-                obj, f["ModalPropertyValue.inModes"], el, "inMode", many=True, names_of="SystemOperationMode"
+                obj,
+                self.f["ModalPropertyValue.inModes"],
+                el,
+                "inMode",
+                many=True,
+                names_of="SystemOperationMode",
             )
         return obj
 
@@ -909,14 +951,9 @@ class _Reader:
             self.register_id(obj, el)
         return obj
 
-    def _number(self, el, prop, field_href, cname: str, convert) -> EObject:
+    def _number(self, el, prop, field_href, cls: type, value_slot, unit_slot, convert) -> EObject:
         fast = self.fast
-        value_slot, unit_slot = (
-            (self.s_int_value, self.s_int_unit)
-            if cname == "IntegerValue"
-            else (self.s_real_value, self.s_real_unit)
-        )
-        obj = fast.new(self.cls[cname])
+        obj = fast.new(cls)
         text = el.get("value")
         if text is None:
             number = convert("0")
@@ -932,22 +969,28 @@ class _Reader:
                 unit_el = child
             else:
                 self.unknown(child, el.tag)
-        unit_attr = el.get("unit")
-        if unit_el is not None or unit_attr is not None:
-            if unit_el is not None:
-                uri, frag = self.href(unit_el)
-            else:
-                _type, uri, frag = _split_ref_attribute(unit_attr)
-                self.note_uri(uri)
-            fast.set_value(obj, unit_slot, f"{uri}#{frag}")
-            self.literal_use((uri, frag, "unit", prop, field_href), obj, "unit")
+        if unit_el is not None:
+            uri, frag = self.href(unit_el)
+        else:
+            unit_attr = el.get("unit")
+            if unit_attr is None:
+                return obj
+            _type, uri, frag = _split_ref_attribute(unit_attr)
+            self.note_uri(uri)
+        fast.set_value(obj, unit_slot, f"{uri}#{frag}")
+        key = (uri, frag, "unit", prop, field_href)
+        uses = self.literal_uses.get(key)
+        if uses is None:
+            self.literal_uses[key] = [(obj, "unit")]
+        else:
+            uses.append((obj, "unit"))
         return obj
 
     def _integer(self, el, prop, field_href) -> EObject:
-        return self._number(el, prop, field_href, "IntegerValue", int)
+        return self._number(el, prop, field_href, self.c_int, self.s_int_value, self.s_int_unit, int)
 
     def _real(self, el, prop, field_href) -> EObject:
-        return self._number(el, prop, field_href, "RealValue", float)
+        return self._number(el, prop, field_href, self.c_real, self.s_real_value, self.s_real_unit, float)
 
     def _string(self, el, prop, field_href) -> EObject:
         obj = self.fast.new(self.cls["StringValue"])
@@ -967,11 +1010,18 @@ class _Reader:
         target = self.link(el, "namedValue", "NamedValue")
         if target is None:
             raise self.error("a named value names nothing (expected a namedValue reference)", el)
-        uri, frag = target
-        name = _name_of(uri, frag)
-        if not frag or _is_positional(frag):
-            self.literal_use((uri, frag, "enum", prop, field_href), obj, "name")
-        self.fast.set_value(obj, self.f["NamedValue.name"], name)
+        found = self.named_values.get(target)
+        if found is None:
+            uri, frag = target
+            found = self.named_values[target] = (_name_of(uri, frag), not frag or _is_positional(frag))
+        if found[1]:
+            key = (*target, "enum", prop, field_href)
+            uses = self.literal_uses.get(key)
+            if uses is None:
+                self.literal_uses[key] = [(obj, "name")]
+            else:
+                uses.append((obj, "name"))
+        self.fast.set_value(obj, self.s_named_name, found[0])
         return obj
 
     def _range(self, el, prop, field_href) -> EObject:
@@ -999,20 +1049,25 @@ class _Reader:
 
     def _record(self, el, prop, field_href) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["RecordValue"])
+        new, set_value, set_child = fast.new, fast.set_value, fast.set_child
+        c_field, s_name, s_value = self.cls["FieldValue"], f["FieldValue.name"], f["FieldValue.value"]
+        literal_uses, field_names, value = self.literal_uses, self.field_names, self.value
+        obj = new(self.cls["RecordValue"])
         fields = []
         for child in el:
             if child.tag != "ownedFieldValue":
                 self.unknown(child, "RecordValue")
                 continue
-            field_obj = fast.new(self.cls["FieldValue"])
-            self.register_id(field_obj, child)
+            field_obj = new(c_field)
+            if self.has_ids:
+                self.register_id(field_obj, child)
             target = None
             value_el = None
             for part in child:
-                if part.tag == "property":
+                tag = part.tag
+                if tag == "property":
                     target = self.href(part)
-                elif part.tag == "ownedValue":
+                elif tag == "ownedValue":
                     value_el = part
                 else:
                     self.unknown(part, "ownedFieldValue")
@@ -1021,13 +1076,23 @@ class _Reader:
                 target = (uri, frag)
             if target is None or value_el is None:
                 raise self.error("a record field needs a property and an ownedValue", child)
-            uri, frag = target
-            if frag and not _is_positional(frag):
-                fast.set_value(field_obj, f["FieldValue.name"], _qualified_name(frag).rpartition("::")[2])
-            else:
-                fast.set_value(field_obj, f["FieldValue.name"], f"{uri}#{frag}")
-                self.literal_use((uri, frag, "field", prop, field_href), field_obj, "name")
-            fast.set_child(field_obj, f["FieldValue.value"], self.value(value_el, prop, target))
+            name = field_names.get(target)
+            if name is None:
+                uri, frag = target
+                positional = not frag or _is_positional(frag)
+                name = field_names[target] = (
+                    f"{uri}#{frag}" if positional else _qualified_name(frag).rpartition("::")[2],
+                    positional,
+                )
+            set_value(field_obj, s_name, name[0])
+            if name[1]:
+                key = (*target, "field", prop, field_href)
+                uses = literal_uses.get(key)
+                if uses is None:
+                    literal_uses[key] = [(field_obj, "name")]
+                else:
+                    uses.append((field_obj, "name"))
+            set_child(field_obj, s_value, value(value_el, prop, target))
             fields.append(field_obj)
         if fields:
             fast.set_many(obj, f["RecordValue.ownedFields"], fields)
@@ -1094,32 +1159,44 @@ class _Reader:
     def resolve_pending(self) -> None:
         set_many, set_value = FastFactory.set_many, FastFactory.set_value
         cache: dict[str, EObject] = {}
-        for pending in self.pending:
-            obj, slot, text, element, attribute, many, names_of = pending
-            targets = []
-            for token in text.split() if many else (text.strip(),):
+        resolve = self.resolve
+        for obj, slot, text, element, attribute, many, names_of in self.pending:
+            if not many:
+                token = text.strip()
                 target = cache.get(token)
                 if target is None:
-                    target = cache[token] = self.resolve(token, element, attribute)
+                    target = cache[token] = resolve(token, element, attribute)
+                expected = slot.target if names_of is None else self.cls[names_of]
+                if not isinstance(target, expected):
+                    raise self._wrong_target(attribute, target, expected, element)
+                set_value(obj, slot, target if names_of is None else (target.name or ""))
+                continue
+            targets = []
+            for token in text.split():
+                target = cache.get(token)
+                if target is None:
+                    target = cache[token] = resolve(token, element, attribute)
                 targets.append(target)
             expected = slot.target if names_of is None else self.cls[names_of]
             for target in targets:
                 if not isinstance(target, expected):
-                    raise self.error(
-                        f"{attribute} refers to a {target.eClass.name}, expected a {expected.eClass.name}",
-                        element,
-                        attribute,
-                    )
+                    raise self._wrong_target(attribute, target, expected, element)
             if names_of is not None:
                 targets = [target.name or "" for target in targets]
-            if many:
-                set_many(obj, slot, targets)
-            else:
-                set_value(obj, slot, targets[0])
+            set_many(obj, slot, targets)
+
+    def _wrong_target(self, attribute: str, target: EObject, expected: type, element) -> ImportFormatError:
+        return self.error(
+            f"{attribute} refers to a {target.eClass.name}, expected a {expected.eClass.name}",
+            element,
+            attribute,
+        )
 
     def resolve(self, token: str, element: etree._Element, attribute: str) -> EObject:
         text = token[1:] if token.startswith("#") else token
         if not text.startswith("/"):
+            if not self.has_ids:
+                raise _IdsNeeded
             found = self.ids.get(text)
             if found is None:
                 raise self.error(
@@ -1682,13 +1759,37 @@ def loads_aaxl2(
             f"the document is {len(data)} bytes, more than the {max_bytes}-byte limit for .aaxl2 files",
             file=filename,
         )
+    try:
+        return _load(data, filename, strict=strict, with_ids=False)
+    except _IdsNeeded:
+        return _load(data, filename, strict=strict, with_ids=True)
+
+
+class _IdsNeeded(Exception):
+    """A reference names an ``xmi:id`` but the reader did not index them: read again with ids."""
+
+
+def _carries_id(root_el: etree._Element) -> bool:
+    element: etree._Element | None = root_el
+    for _depth in range(3):
+        if element is None:
+            return False
+        if element.get(_XMI_ID) is not None:
+            return True
+        element = next((child for child in element if isinstance(child.tag, str)), None)
+    return False
+
+
+def _load(data: bytes, filename: str, *, strict: bool, with_ids: bool) -> ImportResult:
     with gc_paused():
         tree = parse_xml_bytes(data, filename)
         root_el = tree.getroot()
         reader = _Reader(filename, tree, strict=strict)
         # cheap facts about the text that let the reader skip work: no ids to index, and no
-        # namespace prefix declared below the root (so xsi:type prefixes mean the same everywhere)
-        reader.has_ids = b'id="' in data or b"id='" in data
+        # namespace prefix declared below the root (so xsi:type prefixes mean the same everywhere).
+        # EMF writes an xmi:id on every object of a resource that uses them, so the root and its
+        # first child tell; a file that refers to an id only deeper down is read again with ids
+        reader.has_ids = with_ids or _carries_id(root_el)
         reader.nsmap_is_global = data.count(b"xmlns") <= len(root_el.nsmap)
         tag = root_el.tag
         if tag in (_ROOT_SYSTEM, _ROOT_XMI):

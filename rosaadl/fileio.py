@@ -101,7 +101,7 @@ def parse_xml_bytes(data: bytes, filename: str, *, allow_doctype: bool = False) 
     A DOCTYPE that declares entities is refused (entity-expansion bombs, external entities);
     a plain DOCTYPE is refused too unless ``allow_doctype`` (Cheddar v2 files carry one).
     """
-    if not data.strip():
+    if not data or data.isspace():
         raise ImportFormatError("the file is empty; expected an XML document", file=filename, line=1)
     try:
         tree = etree.ElementTree(etree.fromstring(data, safe_xml_parser()))

@@ -855,3 +855,24 @@ def test_a_literal_of_a_property_the_era_does_not_declare_is_decoded_where_it_is
         "Memory_Properties::Code_Size",
     )
     assert check_use("2014", unit) is None
+
+
+def test_an_xmi_id_only_deep_in_the_file_is_still_found() -> None:
+    """The reader indexes xmi:ids when the root or its first child carries one (EMF puts one on
+    every object of a resource that uses them); a file that refers to an id given only further
+    down is read again with ids, with the same result as a file with ids everywhere."""
+    body = """  <componentInstance name="cpu" category="processor"/>
+  <componentInstance name="b" category="bus" xmi:id="_bus">
+    <featureInstance name="acc" category="busAccess" direction="in out" xmi:id="_acc"/>
+  </componentInstance>
+  <connectionInstance name="acc -> cpu" kind="accessConnection" source="#_acc"
+      destination="//@componentInstance.0">
+    <connectionReference context="/" source="_acc" destination="//@componentInstance.0"/>
+  </connectionInstance>"""
+    result = loads_aaxl2(_instance(body))
+    connection = result.root.connectionInstances[0]
+    assert connection.source is model.find_instance(result.root, "b.acc")
+    assert connection.connectionReferences[0].source is connection.source
+    # an id nobody carries is a located error, not a second silent read
+    with pytest.raises(ImportFormatError, match="no element of the file has as xmi:id"):
+        loads_aaxl2(_instance(body.replace('source="#_acc"', 'source="#_nowhere"')))
