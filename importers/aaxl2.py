@@ -521,7 +521,7 @@ class _Reader:
         """
         text = element.get(attribute)
         if text is not None and text.strip():
-            self.pending.append((obj, feature, text, element, attribute, many, names_of))
+            self.pending.append((obj, feature, text, element.sourceline, attribute, many, names_of))
 
     def register_id(self, obj: EObject, element: etree._Element) -> None:
         if self.has_ids:
@@ -739,6 +739,7 @@ class _Reader:
         if self.has_ids:
             self.register_id(obj, el)
         pending = self.pending
+        line = el.sourceline
         for attribute, slot in (
             ("context", f["ConnectionReference.context"]),
             ("source", f["ConnectionReference.source"]),
@@ -748,7 +749,7 @@ class _Reader:
             if text is None:
                 raise self.error(f"a connection reference has no {attribute}", el)
             if text.strip():
-                pending.append((obj, slot, text, el, attribute, False, None))
+                pending.append((obj, slot, text, line, attribute, False, None))
         ok_types = self.link_types_ok
         for child in el:
             if child.tag == "connection":
@@ -1160,54 +1161,72 @@ class _Reader:
         set_many, set_value = FastFactory.set_many, FastFactory.set_value
         cache: dict[str, EObject] = {}
         resolve = self.resolve
-        for obj, slot, text, element, attribute, many, names_of in self.pending:
+        # a pending reference keeps its element's line, not the element: holding tens of
+        # thousands of lxml element proxies costs more to free than the references to resolve
+        for obj, slot, text, line, attribute, many, names_of in self.pending:
             if not many:
                 token = text.strip()
                 target = cache.get(token)
                 if target is None:
-                    target = cache[token] = resolve(token, element, attribute)
+                    target = cache[token] = resolve(token, line, attribute, text)
                 expected = slot.target if names_of is None else self.cls[names_of]
                 if not isinstance(target, expected):
-                    raise self._wrong_target(attribute, target, expected, element)
+                    raise self._wrong_target(attribute, target, expected, line, text)
                 set_value(obj, slot, target if names_of is None else (target.name or ""))
                 continue
             targets = []
             for token in text.split():
                 target = cache.get(token)
                 if target is None:
-                    target = cache[token] = resolve(token, element, attribute)
+                    target = cache[token] = resolve(token, line, attribute, text)
                 targets.append(target)
             expected = slot.target if names_of is None else self.cls[names_of]
             for target in targets:
                 if not isinstance(target, expected):
-                    raise self._wrong_target(attribute, target, expected, element)
+                    raise self._wrong_target(attribute, target, expected, line, text)
             if names_of is not None:
                 targets = [target.name or "" for target in targets]
             set_many(obj, slot, targets)
 
-    def _wrong_target(self, attribute: str, target: EObject, expected: type, element) -> ImportFormatError:
-        return self.error(
+    def _wrong_target(
+        self, attribute: str, target: EObject, expected: type, line: int | None, text: str
+    ) -> ImportFormatError:
+        return self.error_at(
             f"{attribute} refers to a {target.eClass.name}, expected a {expected.eClass.name}",
-            element,
+            line,
             attribute,
+            text,
         )
 
-    def resolve(self, token: str, element: etree._Element, attribute: str) -> EObject:
+    def error_at(self, message: str, line: int | None, attribute: str, text: str) -> ImportFormatError:
+        """An error located at the element of ``line`` whose ``attribute`` is ``text``."""
+        for element in self.tree.getroot().iter():
+            if element.sourceline == line and element.get(attribute) == text:
+                return self.error(message, element, attribute)
+        return ImportFormatError(message, Location(file=self.filename, line=line))
+
+    def resolve(self, token: str, line: int | None, attribute: str, text_of_attribute: str) -> EObject:
         text = token[1:] if token.startswith("#") else token
         if not text.startswith("/"):
             if not self.has_ids:
                 raise _IdsNeeded
             found = self.ids.get(text)
             if found is None:
-                raise self.error(
+                raise self.error_at(
                     f"{attribute} refers to {token!r}, which no element of the file has as xmi:id",
-                    element,
+                    line,
                     attribute,
+                    text_of_attribute,
                 )
             return found
         found = self.path_at(text)
         if found is None:
-            raise self.dangling(token, element, attribute)
+            raise self.error_at(
+                f"{attribute} refers to {token!r}, which is not an element of this file",
+                line,
+                attribute,
+                text_of_attribute,
+            )
         return found
 
     def path_at(self, text: str) -> EObject | None:
@@ -1240,13 +1259,6 @@ class _Reader:
             found = items[position]
         self.path_cache[text] = found
         return found
-
-    def dangling(self, token: str, element: etree._Element, attribute: str) -> ImportFormatError:
-        return self.error(
-            f"{attribute} refers to {token!r}, which is not an element of this file",
-            element,
-            attribute,
-        )
 
     # ------------------------------------------------------------------ era and literals
 
