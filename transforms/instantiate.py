@@ -57,49 +57,50 @@ MAX_SYSTEM_OPERATION_MODES = 1000
 # The order in which OSATE's Xtext model lists an implementation's subcomponents: its
 # ownedSubcomponent union concatenates one list per category, in aadl2.ecore's order for the
 # implementation's class (ComponentImplementation's abstract list first).
-_SUBCOMPONENT_ORDER: dict[str, tuple[str, ...]] = {
-    "abstract": (
-        "abstract",
-        "bus",
-        "data",
-        "device",
-        "memory",
-        "process",
-        "processor",
-        "system",
-        "subprogram",
-        "subprogram group",
-        "thread",
-        "thread group",
-        "virtual bus",
-        "virtual processor",
-    ),
-    "bus": ("abstract", "virtual bus"),
-    "data": ("abstract", "data", "subprogram"),
-    "device": ("abstract", "bus", "data", "virtual bus"),
-    "memory": ("abstract", "bus", "memory", "virtual bus"),
-    "process": ("abstract", "data", "subprogram", "subprogram group", "thread", "thread group"),
-    "processor": ("abstract", "bus", "memory", "virtual bus", "virtual processor"),
-    "subprogram": ("abstract", "data", "subprogram"),
-    "subprogram group": ("abstract", "subprogram", "subprogram group", "data"),
-    "system": (
-        "abstract",
-        "bus",
-        "data",
-        "device",
-        "memory",
-        "process",
-        "processor",
-        "subprogram",
-        "subprogram group",
-        "system",
-        "virtual bus",
-        "virtual processor",
-    ),
-    "thread": ("abstract", "subprogram group", "subprogram", "data"),
-    "thread group": ("abstract", "data", "thread", "thread group", "subprogram", "subprogram group"),
-    "virtual bus": ("abstract", "virtual bus"),
-    "virtual processor": ("abstract", "virtual bus", "virtual processor"),
+_SUBCOMPONENT_ORDER: dict[str, list[str]] = {
+    category: ["abstract", *members.split(",")]
+    for category, members in {
+        "abstract": "bus,data,device,memory,process,processor,system,subprogram,subprogram group,"
+        "thread,thread group,virtual bus,virtual processor",
+        "bus": "virtual bus",
+        "data": "data,subprogram",
+        "device": "bus,data,virtual bus",
+        "memory": "bus,memory,virtual bus",
+        "process": "data,subprogram,subprogram group,thread,thread group",
+        "processor": "bus,memory,virtual bus,virtual processor",
+        "subprogram": "data,subprogram",
+        "subprogram group": "subprogram,subprogram group,data",
+        "system": "bus,data,device,memory,process,processor,subprogram,subprogram group,system,"
+        "virtual bus,virtual processor",
+        "thread": "subprogram group,subprogram,data",
+        "thread group": "data,thread,thread group,subprogram,subprogram group",
+        "virtual bus": "virtual bus",
+        "virtual processor": "virtual bus,virtual processor",
+    }.items()
+}
+# The same for a component type's features: ComponentType's feature group and abstract feature
+# lists first, then the lists of the type's class, in aadl2.ecore's order.
+_FEATURE_ORDER: dict[str, list[str]] = {
+    category: ["featureGroup", "abstractFeature", *members.split()]
+    for category, members in {
+        "abstract": "busAccess dataAccess subprogramAccess dataPort eventPort eventDataPort "
+        "subprogramGroupAccess",
+        "bus": "busAccess dataPort eventDataPort eventPort",
+        "data": "subprogramAccess dataAccess subprogramGroupAccess",
+        "device": "dataPort eventDataPort eventPort busAccess subprogramAccess subprogramGroupAccess",
+        "memory": "busAccess dataPort eventDataPort eventPort",
+        "subprogram": "eventDataPort eventPort parameter dataAccess subprogramAccess subprogramGroupAccess",
+        "subprogram group": "subprogramAccess subprogramGroupAccess",
+        "system": "busAccess dataAccess dataPort subprogramGroupAccess subprogramAccess eventPort "
+        "eventDataPort",
+        "processor": "dataPort eventDataPort eventPort busAccess subprogramAccess subprogramGroupAccess",
+        "process": "dataPort eventDataPort eventPort dataAccess subprogramAccess subprogramGroupAccess",
+        "thread": "dataPort eventDataPort eventPort dataAccess subprogramAccess subprogramGroupAccess",
+        "thread group": "dataPort eventDataPort eventPort dataAccess subprogramAccess subprogramGroupAccess",
+        "virtual bus": "dataPort eventDataPort eventPort busAccess",
+        "virtual processor": "dataPort eventDataPort eventPort subprogramAccess subprogramGroupAccess "
+        "busAccess",
+    }.items()
 }
 _ENDING = frozenset({"thread", "device", "processor", "virtual processor"})
 _SHARED = frozenset({"data", "bus", "virtual bus", "subprogram", "subprogram group"})
@@ -556,7 +557,14 @@ class Instantiator:
             ci.mode_list.append(mi)
         factory.extend(ci.obj, "modeInstances", ci.mode_list)
         if impl is not None:
-            for sub in self._osate_order(impl, resolver.subcomponents(impl)):
+            subs = self._in_osate_order(
+                impl,
+                resolver.subcomponents(impl),
+                lambda sub: sub,
+                lambda sub: _lit(sub.category),
+                _SUBCOMPONENT_ORDER,
+            )
+            for sub in subs:
                 self._instantiate_subcomponent(ci, sub, ancestry)
             factory.extend(ci.obj, "componentInstances", [child.obj for child in ci.children])
         if ci.node.ctype is not None or (classifier is not None and _is(classifier, "ComponentType")):
@@ -591,25 +599,30 @@ class Instantiator:
             fi = fi.child(segment.key)
         return fi
 
-    def _osate_order(self, impl: EObject, subs: list[EObject]) -> list[EObject]:
-        """Subcomponents in the order OSATE instantiates them (getAllSubcomponents): the farthest
-        ancestor's first, each implementation's by category (``_SUBCOMPONENT_ORDER``; OSATE 2.0
-        kept the declaration order), a refinement taking the place of the refined subcomponent
-        among its own implementation's."""
-        if len(subs) < 2:
-            return subs
-        chain = list(reversed(self.resolver.extends_chain(impl)))
+    def _in_osate_order(self, classifier: EObject, items: list, member, category, table) -> list:
+        """Members of ``classifier`` (``member(item)`` is the declaration) in the order OSATE lists
+        them (getAllSubcomponents, getAllFeatures): the farthest ancestor's first, each
+        classifier's by category (``category(item)``, ranked by ``table`` for the classifier's
+        class), declaration order within one; a refinement counts among its own classifier's
+        (OSATE removes the refined member and appends the refinement). OSATE 2.0's files show
+        the same order."""
+        if len(items) < 2:
+            return items
+        chain = list(reversed(self.resolver.extends_chain(classifier)))
         level = {id(c): n for n, c in enumerate(chain)}
 
-        def key(item: tuple[int, EObject]) -> tuple[int, int, int]:
-            position, sub = item
-            owner = sub.eContainer()
-            order = () if self.legacy else _SUBCOMPONENT_ORDER.get(_lit(getattr(owner, "category", None)), ())
-            category = _lit(sub.category)
-            rank = order.index(category) if category in order else len(order)
-            return level.get(id(owner), len(chain)), rank, position
+        def key(pair: tuple[int, Any]) -> tuple[int, int, int]:
+            position, item = pair
+            owner = member(item).eContainer()
+            order = table.get(_lit(getattr(owner, "category", None)), ())
+            word = category(item)
+            return (
+                level.get(id(owner), len(chain)),
+                order.index(word) if word in order else len(order),
+                position,
+            )
 
-        return [sub for _, sub in sorted(enumerate(subs), key=key)]
+        return [item for _, item in sorted(enumerate(items), key=key)]
 
     def _instantiate_subcomponent(self, ci: _CI, sub: EObject, ancestry: list[EObject]) -> None:
         resolver = self.resolver
@@ -742,6 +755,10 @@ class Instantiator:
             if dims and owner_category in _ARRAY_FEATURE_OWNERS:
                 size = self._array_sizes(dims[:1], feature, resolver.qualified_name(feature))[0] or 0
             plan.append((feature, category, direction, fgt, size))
+        if ctype is not None:
+            plan = self._in_osate_order(
+                ctype, plan, lambda entry: entry[0], lambda entry: entry[1], _FEATURE_ORDER
+            )
         self._feature_cache[key] = plan
         return plan
 

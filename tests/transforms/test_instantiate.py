@@ -753,7 +753,7 @@ end Ordered;
 def test_subcomponents_are_instantiated_in_osate_s_order():
     """OSATE's getAllSubcomponents: the farthest ancestor's subcomponents first, each
     implementation's by category (aadl2.ecore's list order for its class), a refinement moved
-    to its refining implementation; OSATE 2.0 kept the declaration order of each implementation."""
+    to its refining implementation; OSATE 2.0's files show the same order."""
     from rosaadl.importers.aadl_text import read_string
 
     ws = read_string(_ORDERED, "ordered.aadl")
@@ -771,15 +771,7 @@ def test_subcomponents_are_instantiated_in_osate_s_order():
     legacy = instantiate(
         read_string(_ORDERED, "ordered.aadl"), "Ordered::top.refined", compatibility="osate-2.0"
     )
-    assert [c.name for c in legacy.componentInstances] == [
-        "cpu1",
-        "mem",
-        "lan",
-        "other",
-        "app",
-        "cpu0",
-        "can",
-    ]
+    assert [c.name for c in legacy.componentInstances] == [c.name for c in system.componentInstances]
 
 
 _FEATURE_APPLICABILITY = """
@@ -821,3 +813,39 @@ def test_features_take_the_properties_that_apply_to_their_own_category(tmp_path)
     legacy = instantiate(read_files([source]), "Applies::top.i", compatibility="osate-2.0")
     assert property_value(model.find_instance(legacy, "s.canbus"), "Period") == Quantity(25, "ms")
     assert property_value(model.find_instance(legacy, "s.sample"), "Priority") == 5
+
+
+_FEATURES_ORDERED = """
+package FOrdered
+public
+  bus net end net;
+  data msg end msg;
+  device base
+    features
+      cmd: in event port;
+      lan: requires bus access net;
+      sample: out data port msg;
+  end base;
+  device camera extends base
+    features
+      image: out event data port msg;
+      power: feature;
+  end camera;
+  system top end top;
+  system implementation top.i
+    subcomponents
+      cam: device camera;
+  end top.i;
+end FOrdered;
+"""
+
+
+def test_features_are_instantiated_in_osate_s_order():
+    """OSATE's getAllFeatures: the farthest ancestor's features first, each type's by category in
+    aadl2.ecore's list order for its class (a device: data, event data, event ports, then bus
+    access; feature groups and abstract features before all)."""
+    from rosaadl.importers.aadl_text import read_string
+
+    system = instantiate(read_string(_FEATURES_ORDERED, "fordered.aadl"), "FOrdered::top.i")
+    cam = model.find_instance(system, "cam")
+    assert [f.name for f in cam.featureInstances] == ["sample", "cmd", "lan", "power", "image"]
