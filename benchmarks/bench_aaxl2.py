@@ -267,8 +267,15 @@ def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
     from rosaadl.importers.aaxl2 import loads_aaxl2
 
     data = path.read_bytes()
+    # the first parse of the file in the run, before the allocator holds memory freed by an
+    # import of it: slower than the steady-state floor below, for large files by about half
+    gc.collect()
+    start = time.process_time()
+    parse_xml_bytes(data, str(path))
+    first_parse = time.process_time() - start
     result = loads_aaxl2(data, str(path))
     objects = sum(1 for _ in model.walk(result.model))
+    del result
     floor, ours = _best_pair(
         lambda: parse_xml_bytes(data, str(path)), lambda: loads_aaxl2(data, str(path)), repeat
     )
@@ -284,7 +291,14 @@ def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
             pyecore_s = min(times)
         except Exception as exc:  # pyecore's own failure is a result here, not an error
             note = f"pyecore fails: {type(exc).__name__}: {str(exc).splitlines()[0][:60]}"
-    return {"objects": objects, "floor": floor, "ours": ours, "pyecore": pyecore_s, "note": note}
+    return {
+        "objects": objects,
+        "floor": floor,
+        "first_parse": first_parse,
+        "ours": ours,
+        "pyecore": pyecore_s,
+        "note": note,
+    }
 
 
 def _breakdown(path: Path) -> dict[str, float]:
@@ -389,9 +403,13 @@ def main(argv: list[str]) -> int:
                 f"{key} {value * 1000:.0f} ms ({value / floor:.1f}x)" for key, value in big_parts.items()
             )
         )
-    worst = max(r["ours"] / r["floor"] for _, r in rows)
     big = rows[-1][1]
-    print(f"goal ours <= 5x floor: generated {big['ours'] / big['floor']:.1f}x, worst file {worst:.1f}x")
+    worst = max(r["ours"] / r["floor"] for _, r in rows[:-1]) if len(rows) > 1 else float("nan")
+    print(
+        f"goal ours <= 5x floor: generated {big['ours'] / big['floor']:.1f}x "
+        f"({big['ours'] / big['first_parse']:.1f}x its first parse in the run), "
+        f"worst corpus file {worst:.1f}x"
+    )
     if loaded:
         slowest = min(r["pyecore"] / r["ours"] for r in loaded)
         gen_speedup = f"{big['pyecore'] / big['ours']:.1f}x" if big["pyecore"] is not None else "n/a"
