@@ -6,8 +6,9 @@ Each process instance is one node of the launch files:
   unique within its namespace (``ROS_Properties::Namespace``);
 * ``Actual_Processor_Binding`` (of the process, else the union of its threads') gives the cores
   it may run on, written as ``taskset -c <cpus>`` in the launch ``prefix``.  A core's CPU number
-  is ``Cheddar_Properties::Core_Id`` when set, otherwise its position, in declaration order
-  from 0, among the innermost processors of its *host*: the nearest enclosing multi-core
+  is ``Cheddar_Properties::Core_Id`` when set, otherwise its position from 0, in the instance's
+  order (OSATE's: by category, declaration order within one), among the innermost processors of
+  its *host*: the nearest enclosing multi-core
   ``processor``, or system carrying ``Hardware_Properties::Architecture`` (a chip, as the
   library models SoCs).  A processor with no such host is a host of its own (a ROSMOD host)
   and gets no affinity, only its scheduling.  A binding to a virtual processor follows that
@@ -108,7 +109,7 @@ def namespace_of(process: EObject) -> str:
 
 def _leaf_processors(component: EObject) -> list[EObject]:
     """The innermost processors of ``component`` (itself when it is a processor without cores),
-    in declaration order."""
+    in the instance's order."""
     found: list[EObject] = []
 
     def visit(current: EObject) -> bool:
