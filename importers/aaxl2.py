@@ -906,11 +906,7 @@ class _Reader:
         return name
 
     def literal_use(self, key: tuple, obj: EObject, feature_name: str) -> None:
-        uses = self.literal_uses.get(key)
-        if uses is None:
-            self.literal_uses[key] = [(obj, feature_name)]
-        else:
-            uses.append((obj, feature_name))
+        self.literal_uses.setdefault(key, []).append((obj, feature_name))
 
     def modal_value(self, el: etree._Element, prop: str | None) -> EObject:
         fast = self.fast
@@ -980,11 +976,7 @@ class _Reader:
             self.note_uri(uri)
         fast.set_value(obj, unit_slot, f"{uri}#{frag}")
         key = (uri, frag, "unit", prop, field_href)
-        uses = self.literal_uses.get(key)
-        if uses is None:
-            self.literal_uses[key] = [(obj, "unit")]
-        else:
-            uses.append((obj, "unit"))
+        self.literal_uses.setdefault(key, []).append((obj, "unit"))
         return obj
 
     def _integer(self, el, prop, field_href) -> EObject:
@@ -1017,11 +1009,7 @@ class _Reader:
             found = self.named_values[target] = (_name_of(uri, frag), not frag or _is_positional(frag))
         if found[1]:
             key = (*target, "enum", prop, field_href)
-            uses = self.literal_uses.get(key)
-            if uses is None:
-                self.literal_uses[key] = [(obj, "name")]
-            else:
-                uses.append((obj, "name"))
+            self.literal_uses.setdefault(key, []).append((obj, "name"))
         self.fast.set_value(obj, self.s_named_name, found[0])
         return obj
 
@@ -1088,11 +1076,7 @@ class _Reader:
             set_value(field_obj, s_name, name[0])
             if name[1]:
                 key = (*target, "field", prop, field_href)
-                uses = literal_uses.get(key)
-                if uses is None:
-                    literal_uses[key] = [(field_obj, "name")]
-                else:
-                    uses.append((field_obj, "name"))
+                literal_uses.setdefault(key, []).append((field_obj, "name"))
             set_child(field_obj, s_value, value(value_el, prop, target))
             fields.append(field_obj)
         if fields:
