@@ -18,6 +18,7 @@ from pathlib import Path
 
 import pytest
 from conftest import corpus_dir
+from instance_builders import component, num, pa, ref
 
 from rosaadl import model
 from rosaadl.analysis.busload import analyze_bus_load, java_double, message_rate, port_loads
@@ -27,24 +28,6 @@ new = model.new
 
 
 # =============================================================================== builders
-
-
-def pa(prop, value, modes=None):
-    if isinstance(value, list):
-        values = [new("ModalPropertyValue", value=v, inModes=m) for v, m in value]
-    else:
-        values = [new("ModalPropertyValue", value=value, inModes=modes)]
-    return new("PropertyAssociation", property=prop, ownedValues=values)
-
-
-def num(value, unit):
-    return new("RealValue" if isinstance(value, float) else "IntegerValue", value=value, unit=unit)
-
-
-def ref(*targets):
-    return new(
-        "ListValue", ownedItems=[new("InstanceReferenceValue", referencedInstanceObject=t) for t in targets]
-    )
 
 
 def rate_spec(low, high, unit="PerSecond"):
@@ -61,14 +44,6 @@ def rate_spec(low, high, unit="PerSecond"):
             new("FieldValue", name="Rate_Unit", value=new("NamedValue", name=unit)),
         ],
     )
-
-
-def component(name, category, *children, props=(), features=()):
-    ci = new("ComponentInstance", name=name, category=category)
-    ci.componentInstances.extend(children)
-    ci.featureInstances.extend(features)
-    ci.ownedPropertyAssociations.extend(props)
-    return ci
 
 
 def port(name, direction, size=8, rate=None, category="data port"):

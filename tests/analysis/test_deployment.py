@@ -8,20 +8,13 @@ import random
 from fractions import Fraction
 
 import pytest
+from instance_builders import num, pa
 
 from rosaadl import model
 from rosaadl.analysis.deployment import search_deployment
 from rosaadl.errors import ModelError
 
 new = model.new
-
-
-def pa(prop, value):
-    return new("PropertyAssociation", property=prop, ownedValues=[new("ModalPropertyValue", value=value)])
-
-
-def num(value, unit):
-    return new("RealValue" if isinstance(value, float) else "IntegerValue", value=value, unit=unit)
 
 
 def thread(name, period, cet, props=()):

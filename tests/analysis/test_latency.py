@@ -5,30 +5,13 @@ from __future__ import annotations
 from fractions import Fraction
 
 import pytest
+from instance_builders import component, num, pa, ref, span
 
 from rosaadl import model
 from rosaadl.analysis.latency import analyze_latency, thread_chains
 from rosaadl.analysis.schedulability import analyze_schedulability
 
 new = model.new
-
-
-def pa(prop, value):
-    return new("PropertyAssociation", property=prop, ownedValues=[new("ModalPropertyValue", value=value)])
-
-
-def num(value, unit):
-    return new("RealValue" if isinstance(value, float) else "IntegerValue", value=value, unit=unit)
-
-
-def span(low, high, unit="us"):
-    return new("RangeValue", minimum=num(low, unit), maximum=num(high, unit))
-
-
-def ref(*targets):
-    return new(
-        "ListValue", ownedItems=[new("InstanceReferenceValue", referencedInstanceObject=t) for t in targets]
-    )
 
 
 def port(name, direction, size=1000):
@@ -50,13 +33,6 @@ def thread(name, period, cet, dispatch="Periodic", priority=None, ports=()):
     ci = new("ComponentInstance", name=name, category="thread")
     ci.ownedPropertyAssociations.extend(props)
     ci.featureInstances.extend(ports)
-    return ci
-
-
-def component(name, category, *children, props=()):
-    ci = new("ComponentInstance", name=name, category=category)
-    ci.componentInstances.extend(children)
-    ci.ownedPropertyAssociations.extend(props)
     return ci
 
 

@@ -6,26 +6,13 @@ import json
 from pathlib import Path
 
 import pytest
+from instance_builders import num, pa, ref
 
 from rosaadl import model
 from rosaadl.analysis import ANALYSES, DEFAULT_ANALYSES, AnalysisReport, parse_only, run_analyses
 from rosaadl.errors import UsageError
 
 new = model.new
-
-
-def pa(prop, value):
-    return new("PropertyAssociation", property=prop, ownedValues=[new("ModalPropertyValue", value=value)])
-
-
-def num(value, unit):
-    return new("RealValue" if isinstance(value, float) else "IntegerValue", value=value, unit=unit)
-
-
-def ref(*targets):
-    return new(
-        "ListValue", ownedItems=[new("InstanceReferenceValue", referencedInstanceObject=t) for t in targets]
-    )
 
 
 def thread(name, period, cet, priority, ports=()):

@@ -6,6 +6,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import pytest
+from instance_builders import component, num, pa, ref, span
 
 from rosaadl import model
 from rosaadl.analysis.busload import port_loads
@@ -23,35 +24,6 @@ new = model.new
 
 
 # =============================================================================== builders
-
-
-def pa(prop, value, modes=None):
-    return new(
-        "PropertyAssociation",
-        property=prop,
-        ownedValues=[new("ModalPropertyValue", value=value, inModes=modes)],
-    )
-
-
-def num(value, unit):
-    return new("RealValue" if isinstance(value, float) else "IntegerValue", value=value, unit=unit)
-
-
-def span(low, high, unit="us"):
-    return new("RangeValue", minimum=num(low, unit), maximum=num(high, unit))
-
-
-def ref(*targets):
-    return new(
-        "ListValue", ownedItems=[new("InstanceReferenceValue", referencedInstanceObject=t) for t in targets]
-    )
-
-
-def component(name, category, *children, props=()):
-    ci = new("ComponentInstance", name=name, category=category)
-    ci.componentInstances.extend(children)
-    ci.ownedPropertyAssociations.extend(props)
-    return ci
 
 
 def processor(name, mips=None, *cores, category="processor", budget=None):
