@@ -738,18 +738,10 @@ class _Reader:
         obj = fast.new(self.cls["ConnectionReference"])
         if self.has_ids:
             self.register_id(obj, el)
-        pending = self.pending
-        line = el.sourceline
-        for attribute, slot in (
-            ("context", f["ConnectionReference.context"]),
-            ("source", f["ConnectionReference.source"]),
-            ("destination", f["ConnectionReference.destination"]),
-        ):
-            text = el.get(attribute)
-            if text is None:
+        for attribute in ("context", "source", "destination"):
+            if el.get(attribute) is None:
                 raise self.error(f"a connection reference has no {attribute}", el)
-            if text.strip():
-                pending.append((obj, slot, text, line, attribute, False, None))
+            self.ref_later(obj, f[f"ConnectionReference.{attribute}"], el, attribute)
         ok_types = self.link_types_ok
         for child in el:
             if child.tag == "connection":
@@ -763,8 +755,7 @@ class _Reader:
     def flow_specification(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["FlowSpecificationInstance"])
-        if self.has_ids:
-            self.register_id(obj, el)
+        self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["FlowSpecificationInstance.name"], name)
         has_source, has_destination = el.get("source") is not None, el.get("destination") is not None
@@ -778,8 +769,7 @@ class _Reader:
     def end_to_end_flow(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["EndToEndFlowInstance"])
-        if self.has_ids:
-            self.register_id(obj, el)
+        self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["EndToEndFlowInstance.name"], name)
         fast.set_value(obj, f["EndToEndFlowInstance.flow"], name)
@@ -790,8 +780,7 @@ class _Reader:
     def mode_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["ModeInstance"])
-        if self.has_ids:
-            self.register_id(obj, el)
+        self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["ModeInstance.name"], name)
         fast.set_value(obj, f["ModeInstance.mode"], name)
@@ -803,8 +792,7 @@ class _Reader:
     def mode_transition(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["ModeTransitionInstance"])
-        if self.has_ids:
-            self.register_id(obj, el)
+        self.register_id(obj, el)
         fast.set_value(obj, f["ModeTransitionInstance.name"], el.get("name") or "")
         self.ref_later(obj, f["ModeTransitionInstance.source"], el, "source")
         self.ref_later(obj, f["ModeTransitionInstance.destination"], el, "destination")
@@ -815,8 +803,7 @@ class _Reader:
     def system_operation_mode(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["SystemOperationMode"])
-        if self.has_ids:
-            self.register_id(obj, el)
+        self.register_id(obj, el)
         fast.set_value(obj, f["SystemOperationMode.name"], el.get("name") or "")
         self.ref_later(obj, f["SystemOperationMode.currentModes"], el, "currentMode", many=True)
         for child in el:
@@ -826,8 +813,7 @@ class _Reader:
     def annex_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = fast.new(self.cls["AnnexInstance"])
-        if self.has_ids:
-            self.register_id(obj, el)
+        self.register_id(obj, el)
         fast.set_value(obj, f["AnnexInstance.name"], el.get("name") or "")
         text = etree.tostring(el, encoding="unicode", with_tail=False)
         fast.set_value(obj, f["AnnexInstance.text"], text)
