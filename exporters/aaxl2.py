@@ -1448,6 +1448,7 @@ class _Writer:
                     raise self.error(f"annex instance {annex.name!r} redefines the prefix {prefix!r}", obj)
                 if prefix not in dict(_NS):
                     self.extra_ns[prefix] = uri
+            etree.indent(element, space="  ", level=len(indent) // 2)  # at the annex's depth
             body = etree.tostring(element, encoding="ascii", with_tail=False).decode("ascii")
             # the document's root declares the namespaces; lxml escapes '>' in attribute values
             head, end, rest = body.partition(">")
