@@ -389,6 +389,18 @@ class _Reader:
         self.named_values: dict[tuple[str, str], tuple[str, bool]] = {}
         self.s_named_name = self.f["NamedValue.name"]
 
+    def release(self) -> None:
+        """Free the reader's tables, then the parsed document.
+
+        In that order, nothing large is freed or allocated after the document within the call:
+        glibc keeps the document's ~10^5 small freed nodes in its fast bins, and the next large
+        request merges them all at once (about 40 ms for a 10 MB file, cold in the cache). Freed
+        last, they are reused chunk for chunk by the next parse instead, as by a bare parse.
+        """
+        tree = self.tree
+        self.__dict__.clear()
+        del tree
+
     # ------------------------------------------------------------------ helpers
 
     def location(self, element: etree._Element | None, attribute: str | None = None) -> Location:
@@ -1801,4 +1813,6 @@ def _load(data: bytes, filename: str, *, strict: bool, with_ids: bool) -> Import
         sidecars=reader.sidecars(),
     )
     log.debug("read %s: %s, era %s, %d warning(s)", filename, kind, choice.era, len(reader.warnings))
+    # the document goes last: see _Reader.release
+    reader.release()
     return result
