@@ -40,6 +40,24 @@ _ORDERED_SET_FIELDS = isinstance(getattr(_probe, "items", None), list) and isins
 del _probe
 
 
+# what ``EObject.__new__`` sets to None on every object, until pyecore sets it
+_NONE_ATTRIBUTES = ("_internal_id", "_container", "_containment_feature", "_eresource")
+
+
+def _class_defaults(cls: type) -> None:
+    """Give a metamodel class the defaults :meth:`FastFactory.new` leaves out of its objects.
+
+    Reading an attribute an object does not have falls back to its class, so ``None`` there
+    reads as pyecore's ``None`` on the object; writing one (``obj._container = parent``) stores
+    it on the object. ``_staticEClass`` is ``False`` on every class made from an ``EClass``
+    (pyecore sets it so), which is what a dynamic object reads; a static class is refused.
+    """
+    if cls.__dict__.get("_staticEClass", True) is not False:
+        raise TypeError(f"{cls.__name__} is not a class made from an EClass; use its constructor")
+    for name in _NONE_ATTRIBUTES:
+        setattr(cls, name, None)
+
+
 class FeatureSlot:
     """A structural feature with what :class:`FastFactory` needs to know about it, looked up once."""
 
@@ -102,23 +120,24 @@ class FastFactory:
     def new(cls: type) -> EObject:
         """A new object of pyecore class ``cls`` (``eclass.python_class``), with no feature set.
 
-        The state is exactly what ``EObject.__new__`` sets, except that the object is not added
-        to pyecore's process-wide weak registry of every object ever made (what the debugging
-        helper ``allInstances()`` iterates): that registry costs as much as the object itself
-        and nothing in rosaadl reads it. :meth:`register` adds objects to it when wanted.
+        The state reads exactly as what ``EObject.__new__`` sets, with two differences. The
+        attributes that hold ``None`` (container, containment feature, resource, internal id)
+        and ``_staticEClass`` (``False`` on a metamodel's classes) are left to defaults on the
+        class (see :func:`_class_defaults`); pyecore writes them on the object when it sets
+        them. And the object is not added to pyecore's process-wide weak registry of every
+        object ever made (what the debugging helper ``allInstances()`` iterates): that registry
+        costs as much as the object itself and nothing in rosaadl reads it. :meth:`register`
+        adds objects to it when wanted.
         """
+        if "_eresource" not in cls.__dict__:
+            _class_defaults(cls)
         # attribute by attribute: Python keeps them in the class's shared-key layout, which is
         # about twice as fast as assigning a fresh ``__dict__``
         obj = _object_new(cls)
-        obj._internal_id = None
         obj._isset = InternalSet()
-        obj._container = None
-        obj._containment_feature = None
-        obj._eresource = None
         obj.listeners = []
         obj._eternal_listener = []
         obj._inverse_rels = set()
-        obj._staticEClass = False
         obj.dyn_inst = obj
         return obj
 

@@ -98,3 +98,32 @@ def test_fast_builder_rejects_unknown_features_and_misuse() -> None:
         b.add(b.make("Feature"), "name", "x")
     with pytest.raises(ModelError, match="not a literal"):
         b.literal("ComponentCategory", "thred")
+
+
+def test_fast_objects_read_pyecore_s_own_state_and_keep_it_per_object() -> None:
+    from pyecore.ecore import EPackage
+    from pyecore.resources import URI, ResourceSet
+
+    from rosaadl.bulk import FastFactory
+
+    slow, fast = _slow(), _fast()
+    for name in ("_internal_id", "_container", "_containment_feature", "_eresource", "_staticEClass"):
+        assert getattr(fast, name) == getattr(slow, name), name
+    assert fast.instances[0]._container is fast
+    assert fast.instances[0]._containment_feature is slow.instances[0]._containment_feature
+    assert fast.eResource is None and fast.instances[0].eContainer() is fast
+    # what pyecore writes lands on the object, never on the class defaults
+    resource = ResourceSet().create_resource(URI("ws.xmi"))
+    resource.append(fast)
+    assert fast.eResource is resource and "_eresource" in vars(fast)
+    other = _fast()
+    assert other.eResource is None and type(other)._eresource is None
+    si = fast.instances[0]
+    other.instances.append(si)
+    assert si.eContainer() is other and si.eResource is None and not fast.instances
+    fi = si.featureInstances[0]
+    fi.delete()
+    assert fi.eContainer() is None and not si.featureInstances
+    assert si.connectionInstances[0].source is None
+    with pytest.raises(TypeError, match="not a class made from an EClass"):
+        FastFactory.new(EPackage)
