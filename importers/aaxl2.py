@@ -372,6 +372,8 @@ class _Reader:
         # (uri, fragment, role, property, field href) → [(object, feature name)]
         self.literal_uses: dict[tuple, list[tuple[EObject, str]]] = {}
         self.href_cache: dict[str, tuple[str, str]] = {}
+        # a unit's (href, property, field href) → (the unit kept until decoded, its literal_uses list)
+        self.unit_uses: dict[tuple, tuple[str, list]] = {}
         self.xsi_cache: dict[tuple[str, str], tuple[str, str]] = {}
         self.unknown_tags: dict[tuple[str, str], int] = {}
         self.declarative_uris: set[str] = set()
@@ -959,23 +961,37 @@ class _Reader:
             except ValueError:
                 raise self.error(f"value {text!r} is not a number", el, "value") from None
         fast.set_value(obj, value_slot, number)
+        # a number has one child at most, its unit
+        count = len(el)
         unit_el = None
-        for child in el:
-            if child.tag == "unit":
-                unit_el = child
-            else:
-                self.unknown(child, el.tag)
+        if count == 1:
+            unit_el = el[0]
+            if unit_el.tag != "unit":
+                self.unknown(unit_el, el.tag)
+                unit_el = None
+        elif count:
+            for child in el:
+                if child.tag == "unit":
+                    unit_el = child
+                else:
+                    self.unknown(child, el.tag)
         if unit_el is not None:
-            uri, frag = self.href(unit_el)
+            href = unit_el.get("href")
+            key = (href, prop, field_href)
+            found = self.unit_uses.get(key)
+            if found is None:
+                uri, frag = self.href(unit_el)
+                uses = self.literal_uses.setdefault((uri, frag, "unit", prop, field_href), [])
+                found = self.unit_uses[key] = (f"{uri}#{frag}", uses)
         else:
             unit_attr = el.get("unit")
             if unit_attr is None:
                 return obj
             _type, uri, frag = _split_ref_attribute(unit_attr)
             self.note_uri(uri)
-        fast.set_value(obj, unit_slot, f"{uri}#{frag}")
-        key = (uri, frag, "unit", prop, field_href)
-        self.literal_uses.setdefault(key, []).append((obj, "unit"))
+            found = (f"{uri}#{frag}", self.literal_uses.setdefault((uri, frag, "unit", prop, field_href), []))
+        fast.set_value(obj, unit_slot, found[0])
+        found[1].append((obj, "unit"))
         return obj
 
     def _integer(self, el, prop, field_href) -> EObject:
