@@ -129,7 +129,9 @@ class FastFactory:
         costs as much as the object itself and nothing in rosaadl reads it. :meth:`register`
         adds objects to it when wanted.
         """
-        if "_eresource" not in cls.__dict__:
+        try:
+            cls._eresource  # noqa: B018 (the class has the defaults: one cached lookup)
+        except AttributeError:
             _class_defaults(cls)
         # attribute by attribute: Python keeps them in the class's shared-key layout, which is
         # about twice as fast as assigning a fresh ``__dict__``
