@@ -775,5 +775,23 @@ def test_annex_text_is_embedded_with_its_namespace_on_the_root() -> None:
     head = data.decode().splitlines()[1]
     assert re.findall(r"xmlns:(\w+)=", head) == ["xmi", "xsi", "EMV2Instance", "aadl2", "instance"]
     assert '    <annexInstance xsi:type="EMV2Instance:EMV2AnnexInstance" name="EMV2">' in data.decode()
+    # laid out at the annex's depth, as OSATE writes it, whatever the text's own indentation
+    assert (
+        '      <propagations name="p" feature="//@componentInstance.0/@featureInstance.0"/>\n'
+        "    </annexInstance>\n"
+    ) in data.decode()
     again = loads_aaxl2(data)
-    assert again.root.componentInstances[0].annexInstances[0].name == "EMV2"
+    kept = again.root.componentInstances[0].annexInstances[0]
+    assert kept.name == "EMV2"
+    propagation = '<propagations name="p" feature="//@componentInstance.0/@featureInstance.0"/>'
+    assert kept.text.splitlines()[1] == "  " + propagation
+    assert dumps_aaxl2(again.model) == data
+
+
+def test_annex_text_content_is_kept_when_re_indented() -> None:
+    system = _tiny()
+    text = '<annexInstance name="E"><note>two  spaces\n kept</note><a><b/></a></annexInstance>'
+    system.componentInstances[0].annexInstances.append(model.new("AnnexInstance", name="E", text=text))
+    again = loads_aaxl2(dumps_aaxl2(system))
+    annex = etree.fromstring(again.root.componentInstances[0].annexInstances[0].text.encode())
+    assert annex.findtext("note") == "two  spaces\n kept" and annex.find("a/b") is not None
