@@ -394,7 +394,8 @@ class _Reader:
         self.s_named_name = self.f["NamedValue.name"]
 
     def release(self) -> None:
-        """Free the reader's tables, then the parsed document.
+        """Free the reader's tables before the parsed document (which goes with the caller's
+        last reference to it, at the end of the call).
 
         In that order, nothing large is freed or allocated after the document within the call:
         glibc keeps the document's ~10^5 small freed nodes in its fast bins, and the next large
