@@ -14,6 +14,7 @@ from __future__ import annotations
 import gc
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from functools import cache
 from typing import Any
 
 from pyecore.ecore import EClass, EEnum, EObject
@@ -30,7 +31,6 @@ OrderedSet = ordered_set.OrderedSet
 
 
 _object_new = object.__new__
-_evalue_new = EValue.__new__
 # pyecore's ordered sets are ``ordered_set.OrderedSet`` subclasses holding ``items`` and ``map``
 # (pyecore's own patches of that class rely on both); fill them directly when that holds.
 _probe = OrderedSet()
@@ -44,24 +44,95 @@ del _probe
 _NONE_ATTRIBUTES = ("_internal_id", "_container", "_containment_feature", "_eresource")
 
 
+class _MadeOnRead:
+    """A class-level default for a per-object list pyecore makes in ``EObject.__new__``
+    (``listeners``, ``_eternal_listener``): an empty list made on the first read and kept on
+    the object from then on (a non-data descriptor, so the object's own value wins)."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            return self
+        value = obj.__dict__[self.name] = []
+        return value
+
+
+class _Itself:
+    """The default of ``dyn_inst``: pyecore sets it to the object itself on every object, and
+    to the ``EClass`` on the class (which this keeps for reads on the class)."""
+
+    __slots__ = ("eclass",)
+
+    def __init__(self, eclass) -> None:
+        self.eclass = eclass
+
+    def __get__(self, obj, owner=None):
+        return self.eclass if obj is None else obj
+
+
 def _class_defaults(cls: type) -> None:
-    """Give a metamodel class the defaults :meth:`FastFactory.new` leaves out of its objects.
+    """Give a metamodel class (not its subclasses: each class has its own ``dyn_inst``) the
+    defaults :meth:`FastFactory.new` leaves out of its objects.
 
     Reading an attribute an object does not have falls back to its class, so ``None`` there
-    reads as pyecore's ``None`` on the object; writing one (``obj._container = parent``) stores
-    it on the object. ``_staticEClass`` is ``False`` on every class made from an ``EClass``
-    (pyecore sets it so), which is what a dynamic object reads; a static class is refused.
+    reads as pyecore's ``None`` on the object, and the descriptors make what pyecore would
+    have made; writing one (``obj._container = parent``) stores it on the object.
+    ``_staticEClass`` is ``False`` on every class made from an ``EClass`` (pyecore sets it
+    so), which is what a dynamic object reads; a static class is refused.
     """
     if cls.__dict__.get("_staticEClass", True) is not False:
         raise TypeError(f"{cls.__name__} is not a class made from an EClass; use its constructor")
     for name in _NONE_ATTRIBUTES:
         setattr(cls, name, None)
+    cls.listeners = _MadeOnRead("listeners")
+    cls._eternal_listener = _MadeOnRead("_eternal_listener")
+    eclass = cls.__dict__.get("dyn_inst")
+    cls.dyn_inst = eclass if isinstance(eclass, _Itself) else _Itself(eclass)
+    cls._fast_defaults = cls  # read by FastFactory.new: set on this class, not inherited
+
+
+class _Shared:
+    """A class attribute whose value is itself a descriptor (a pyecore feature is one): read
+    from an object, it gives that value; an object may still set its own (non-data descriptor)."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value) -> None:
+        self.value = value
+
+    def __get__(self, obj, owner=None):
+        return self.value
+
+
+@cache
+def _value_holder(feature) -> type:
+    """pyecore's value holder (``EValue``) for the values of one single-valued feature.
+
+    What is the same for every value of the feature (the feature, whether it is a reference
+    or a containment, no generic type yet) is held by the class, so that each holder stores
+    only its owner and its value: half the memory of an ``EValue`` and fewer writes. pyecore
+    reads these as attributes, and writes them (``generic_type``) on the holder itself.
+    """
+    is_ref = bool(feature.is_reference)
+    namespace = {
+        "__module__": EValue.__module__,
+        "__qualname__": EValue.__qualname__,
+        "feature": _Shared(feature),
+        "is_ref": is_ref,
+        "is_cont": bool(is_ref and feature.containment),
+        "generic_type": None,
+    }
+    return type(EValue.__name__, (EValue,), namespace)
 
 
 class FeatureSlot:
     """A structural feature with what :class:`FastFactory` needs to know about it, looked up once."""
 
-    __slots__ = ("feature", "name", "is_ref", "containment", "many", "collection", "target")
+    __slots__ = ("feature", "name", "is_ref", "containment", "many", "collection", "target", "holder")
 
     def __init__(self, feature) -> None:
         self.feature = feature
@@ -70,6 +141,7 @@ class FeatureSlot:
         self.containment = bool(self.is_ref and feature.containment)
         self.many = bool(feature.many)
         self.collection = None
+        self.holder = None if self.many else _value_holder(feature)
         if self.many:
             if feature.derived:
                 raise TypeError(f"{feature.name} is derived; it cannot be filled")
@@ -90,7 +162,8 @@ class FastFactory:
 
     The objects behave exactly like ones made through the normal constructor and setters
     (reading, setting, containment, saving, ``delete()``): every set feature has pyecore's
-    value holder (``EValue`` or collection) and is recorded in ``_isset`` (what pyecore
+    value holder (an ``EValue`` whose feature is held by its class, see :func:`_value_holder`,
+    or a collection) and is recorded in ``_isset`` (what pyecore
     saves), contained objects know their container and containment feature, and referenced
     objects record the inverse reference pyecore keeps for ``delete()``. What is skipped is
     what a new, unobserved object does not need: notifications (no listener can be attached
@@ -120,27 +193,29 @@ class FastFactory:
     def new(cls: type) -> EObject:
         """A new object of pyecore class ``cls`` (``eclass.python_class``), with no feature set.
 
-        The state reads exactly as what ``EObject.__new__`` sets, with two differences. The
-        attributes that hold ``None`` (container, containment feature, resource, internal id)
-        and ``_staticEClass`` (``False`` on a metamodel's classes) are left to defaults on the
-        class (see :func:`_class_defaults`); pyecore writes them on the object when it sets
-        them. And the object is not added to pyecore's process-wide weak registry of every
-        object ever made (what the debugging helper ``allInstances()`` iterates): that registry
-        costs as much as the object itself and nothing in rosaadl reads it. :meth:`register`
-        adds objects to it when wanted.
+        The state reads exactly as what ``EObject.__new__`` sets, with two differences. Only
+        ``_isset`` and ``_inverse_rels`` are written on the object. The attributes that hold
+        ``None`` (container, containment feature, resource, internal id), ``_staticEClass``
+        (``False`` on a metamodel's classes), ``dyn_inst`` (the object itself) and the two
+        listener lists (made empty on first read) are defaults on the class (see
+        :func:`_class_defaults`); pyecore writes them on the object when it sets them. (The
+        inverse references cannot wait for a first read: pyecore clears ``_container`` before
+        it removes the containment pair from them.) And the object is not added to pyecore's
+        process-wide weak registry of every object ever made (what the debugging helper
+        ``allInstances()`` iterates): that registry costs as much as the object itself and
+        nothing in rosaadl reads it. :meth:`register` adds objects to it when wanted.
         """
         try:
-            cls._eresource  # noqa: B018 (the class has the defaults: one cached lookup)
+            ready = cls._fast_defaults is cls  # one cached lookup
         except AttributeError:
+            ready = False
+        if not ready:
             _class_defaults(cls)
         # attribute by attribute: Python keeps them in the class's shared-key layout, which is
         # about twice as fast as assigning a fresh ``__dict__``
         obj = _object_new(cls)
         obj._isset = InternalSet()
-        obj.listeners = []
-        obj._eternal_listener = []
         obj._inverse_rels = set()
-        obj.dyn_inst = obj
         return obj
 
     @staticmethod
@@ -152,29 +227,21 @@ class FastFactory:
     @staticmethod
     def set_value(obj: EObject, slot: FeatureSlot, value: Any) -> None:
         """Set a single-valued attribute, or a non-containment reference to ``value``."""
-        ev = _evalue_new(EValue)
+        ev = _object_new(slot.holder)
         ev.owner = obj
-        ev.feature = slot.feature
-        ev.is_ref = slot.is_ref
-        ev.is_cont = False
-        ev.generic_type = None
         ev._value = value
         d = obj.__dict__
         d[slot.name] = ev
         d["_isset"][slot.feature] = None
         if slot.is_ref and value is not None:
-            value.__dict__["_inverse_rels"].add((obj, slot.feature))
+            value._inverse_rels.add((obj, slot.feature))
 
     @staticmethod
     def set_child(obj: EObject, slot: FeatureSlot, child: EObject) -> None:
         """Set a single-valued containment reference."""
         feature = slot.feature
-        ev = _evalue_new(EValue)
+        ev = _object_new(slot.holder)
         ev.owner = obj
-        ev.feature = feature
-        ev.is_ref = True
-        ev.is_cont = True
-        ev.generic_type = None
         ev._value = child
         d = obj.__dict__
         d[slot.name] = ev
@@ -228,7 +295,7 @@ class FastFactory:
                     cd["_inverse_rels"].add(couple)
             else:
                 for target in values:
-                    target.__dict__["_inverse_rels"].add(couple)
+                    target._inverse_rels.add(couple)
 
     @staticmethod
     def items(collection) -> Any:
@@ -251,11 +318,13 @@ class FastFactory:
         if slot.is_ref:
             couple = (obj, feature)
             for value in values:
-                vd = value.__dict__
                 if slot.containment:
+                    vd = value.__dict__
                     vd["_container"] = obj
                     vd["_containment_feature"] = feature
-                vd["_inverse_rels"].add(couple)
+                    vd["_inverse_rels"].add(couple)
+                else:
+                    value._inverse_rels.add(couple)
 
 
 @contextmanager

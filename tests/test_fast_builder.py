@@ -127,3 +127,76 @@ def test_fast_objects_read_pyecore_s_own_state_and_keep_it_per_object() -> None:
     assert si.connectionInstances[0].source is None
     with pytest.raises(TypeError, match="not a class made from an EClass"):
         FastFactory.new(EPackage)
+
+
+def _inverse_references(root) -> list[set[tuple[int, str]]]:
+    """Each object's ``_inverse_rels`` as (position of the owner, feature name) pairs."""
+    objects = [root, *root.eAllContents()]
+    position = {id(obj): i for i, obj in enumerate(objects)}
+    return [{(position[id(owner)], feature.name) for owner, feature in obj._inverse_rels} for obj in objects]
+
+
+def test_fast_objects_make_pyecore_s_per_object_state_on_first_read() -> None:
+    from pyecore.notification import EObserver
+
+    slow, fast = _slow(), _fast()
+    assert _inverse_references(fast) == _inverse_references(slow)
+    # referred to before it was contained: the containment pair joins the set made by then
+    b = model.FastBuilder()
+    fi = b.make("FeatureInstance", name="p", category=b.literal("FeatureCategory", "data port"))
+    ci = b.make("ConnectionInstance", name="p -> p", source=fi, destination=fi)
+    si = b.make("SystemInstance", name="s", category=b.literal("ComponentCategory", "system"))
+    b.add(si, "featureInstances", fi)
+    b.add(si, "connectionInstances", ci)
+    reference = model.new("SystemInstance", name="s", category="system")
+    rfi = model.new("FeatureInstance", name="p", category="data port")
+    reference.featureInstances.append(rfi)
+    reference.connectionInstances.append(
+        model.new("ConnectionInstance", name="p -> p", source=rfi, destination=rfi)
+    )
+    assert _inverse_references(si) == _inverse_references(reference)
+    # after moves and removals the sets still match pyecore's own
+    for root in (fast, slow):
+        component = root.instances[0]
+        moved = model.new("SystemInstance", name="other", category="system")
+        moved.featureInstances.append(component.featureInstances[0])
+        component.featureInstances.append(moved.featureInstances[0])
+        root.units[0].classifiers[0].features.remove(root.units[0].classifiers[0].features[1])
+    assert _inverse_references(fast) == _inverse_references(slow)
+    # listener lists are the object's own, made when first read
+    seen = []
+
+    class Observer(EObserver):
+        def notifyChanged(self, notification) -> None:
+            seen.append(notification.new)
+
+    feature = fast.units[0].classifiers[0].features[0]
+    Observer(notifier=feature)
+    feature.name = "renamed"
+    fast.units[0].classifiers[0].name = "quiet"
+    assert seen == ["renamed"]
+    assert feature.listeners is not fast.units[0].classifiers[0].listeners
+    assert feature.dyn_inst is feature and "listeners" in vars(feature)
+
+
+def test_a_subclass_made_after_its_superclass_gets_its_own_defaults() -> None:
+    from pyecore.ecore import EClass, EPackage, EReference
+    from pyecore.resources import URI, ResourceSet
+
+    from rosaadl.bulk import FastFactory
+
+    # classes no other test has used: the superclass is prepared first
+    package = EPackage("fresh", nsURI="urn:test:fresh", nsPrefix="fresh")
+    node = EClass("Node")
+    node.eStructuralFeatures.append(EReference("children", node, upper=-1, containment=True))
+    leaf = EClass("Leaf", superclass=(node,))
+    package.eClassifiers.extend([node, leaf])
+    parent = FastFactory.new(node.python_class)
+    child = FastFactory.new(leaf.python_class)
+    for obj, eclass in ((parent, node), (child, leaf)):
+        assert obj.dyn_inst is obj
+        assert type(obj).dyn_inst is eclass  # pyecore's own class attribute, read on the class
+    FastFactory.set_many(child, FastFactory().slot(leaf, "children"), [parent])
+    resource = ResourceSet().create_resource(URI("fresh.xmi"))
+    resource.append(child)
+    assert parent.eResource is resource and child.eResource is resource
