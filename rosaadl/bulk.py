@@ -129,6 +129,24 @@ def _value_holder(feature) -> type:
     return type(EValue.__name__, (EValue,), namespace)
 
 
+@cache
+def _ordered_set_holder(feature) -> type:
+    """pyecore's ordered set (``EOrderedSet``) for the values of one many-valued feature, with
+    what is the same for all of them on the class, as :func:`_value_holder` does: each set
+    stores only its owner and its items (``items`` and ``map``, as ``OrderedSet`` keeps them)."""
+    is_ref = bool(feature.is_reference)
+    namespace = {
+        "__module__": EOrderedSet.__module__,
+        "__qualname__": EOrderedSet.__qualname__,
+        "feature": _Shared(feature),
+        "is_ref": is_ref,
+        "is_cont": bool(is_ref and feature.containment),
+        "generic_type": None,
+        "_orderedset_update": False,
+    }
+    return type(EOrderedSet.__name__, (EOrderedSet,), namespace)
+
+
 class FeatureSlot:
     """A structural feature with what :class:`FastFactory` needs to know about it, looked up once."""
 
@@ -153,6 +171,8 @@ class FeatureSlot:
                 self.collection = ESet
             else:
                 self.collection = EBag
+            if self.collection is EOrderedSet and _ORDERED_SET_FIELDS:
+                self.holder = _ordered_set_holder(feature)
         etype = feature.eType
         self.target = etype.python_class if self.is_ref else None
 
@@ -255,27 +275,26 @@ class FastFactory:
     def set_many(obj: EObject, slot: FeatureSlot, values: list) -> None:
         """Set a many-valued feature (attribute, reference or containment) to the list ``values``."""
         feature = slot.feature
-        cls = slot.collection
-        if cls is EOrderedSet and _ORDERED_SET_FIELDS:
-            collection = EOrderedSet.__new__(EOrderedSet)
-            index = {}
-            items = []
-            for value in values:
-                if value not in index:
-                    index[value] = len(items)
-                    items.append(value)
-            collection.__dict__ = {
-                "owner": obj,
-                "feature": feature,
-                "is_ref": slot.is_ref,
-                "is_cont": slot.containment,
-                "generic_type": None,
-                "_orderedset_update": False,
-                "items": items,
-                "map": index,
-            }
+        holder = slot.holder
+        if holder is not None:  # an ordered set
+            collection = _object_new(holder)
+            collection.owner = obj
+            items = list(values)
+            if len(items) == 1:
+                index = {items[0]: 0}
+            else:
+                index = {value: position for position, value in enumerate(items)}
+            if len(index) < len(items):  # repeated values: the first one counts
+                index = {}
+                items = []
+                for value in values:
+                    if value not in index:
+                        index[value] = len(items)
+                        items.append(value)
+            collection.items = items
+            collection.map = index
         else:
-            collection = cls(obj, feature)
+            collection = slot.collection(obj, feature)
             if isinstance(collection, OrderedSet):
                 add = OrderedSet.add
                 for value in values:
@@ -300,7 +319,7 @@ class FastFactory:
     @staticmethod
     def items(collection) -> Any:
         """The stored items of a pyecore collection, indexable without pyecore's overhead."""
-        if type(collection) is EOrderedSet and _ORDERED_SET_FIELDS:
+        if isinstance(collection, EOrderedSet) and _ORDERED_SET_FIELDS:
             return collection.items
         return collection
 

@@ -200,3 +200,26 @@ def test_a_subclass_made_after_its_superclass_gets_its_own_defaults() -> None:
     resource = ResourceSet().create_resource(URI("fresh.xmi"))
     resource.append(child)
     assert parent.eResource is resource and child.eResource is resource
+
+
+def test_fast_ordered_sets_keep_the_first_of_repeated_values_and_work_as_pyecore_s() -> None:
+    from pyecore.valuecontainer import EOrderedSet
+
+    from rosaadl.bulk import FastFactory
+
+    b = model.FastBuilder()
+    si = b.make("SystemInstance", name="s", category=b.literal("ComponentCategory", "system"))
+    a, c, d = (b.make("ComponentInstance", name=n) for n in "acd")
+    slot = b.slot(si.eClass, "componentInstances")
+    FastFactory.set_many(si, slot, [a, c, a])
+    children = si.componentInstances
+    assert isinstance(children, EOrderedSet) and children.feature is slot.feature
+    assert list(children) == [a, c] and children.index(c) == 1 and children[0] is a
+    children.append(d)
+    children.remove(a)
+    assert list(children) == [c, d] and children.index(d) == 1
+    assert a.eContainer() is None and d.eContainer() is si
+    assert (si, slot.feature) not in a._inverse_rels and (si, slot.feature) in d._inverse_rels
+    reference = model.new("SystemInstance", name="s", category="system")
+    reference.componentInstances.extend(model.new("ComponentInstance", name=n) for n in "cd")
+    assert model.dumps_json(si) == model.dumps_json(reference)
