@@ -73,6 +73,8 @@ NS_AADL2 = "http://aadl.info/AADL/2.0"
 NS_INSTANCE = "http://aadl.info/AADL/2.0/instance"
 
 _XSI_TYPE = f"{{{NS_XSI}}}type"
+# the same key as bytes: lxml reads an attribute by it without encoding the key each time
+_XSI_TYPE_KEY = _XSI_TYPE.encode()
 _XMI_ID = f"{{{NS_XMI}}}id"
 _ROOT_SYSTEM = f"{{{NS_INSTANCE}}}SystemInstance"
 _ROOT_COMPONENT = f"{{{NS_INSTANCE}}}ComponentInstance"
@@ -392,6 +394,12 @@ class _Reader:
         # a named value's (uri, fragment) → (its name, whether it is positional)
         self.named_values: dict[tuple[str, str], tuple[str, bool]] = {}
         self.s_named_name = self.f["NamedValue.name"]
+        self.s_reference_ends = tuple(
+            (end, self.f[f"ConnectionReference.{end}"]) for end in ("context", "source", "destination")
+        )
+        self.s_connection_ends = tuple(
+            (end, self.f[f"ConnectionInstance.{end}"]) for end in ("source", "destination")
+        )
 
     def release(self) -> None:
         """Free the reader's tables before the parsed document (which goes with the caller's
@@ -498,7 +506,7 @@ class _Reader:
                 self.declarative_uris.add(uri)
 
     def check_link_type(self, element: etree._Element, allowed: frozenset[str]) -> None:
-        key = (element.get(_XSI_TYPE), allowed)
+        key = (element.get(_XSI_TYPE_KEY), allowed)
         if key in self.link_types_ok:
             return
         ns, local = self.xsi_type(element)
@@ -530,13 +538,17 @@ class _Reader:
             target = (uri, frag)
         return target
 
-    def ref_later(self, obj, feature, element, attribute, *, many=False, names_of: str | None = None) -> None:
+    def ref_later(
+        self, obj, feature, element, attribute, *, many=False, names_of: str | None = None, text=None
+    ) -> None:
         """Resolve reference ``attribute`` into ``feature`` once every object exists.
 
         ``names_of``: the feature holds the *names* of the referenced objects, which must be of
-        that class (modes in which a component or a value exists).
+        that class (modes in which a component or a value exists). ``text``: the attribute's
+        value, when the caller has read it.
         """
-        text = element.get(attribute)
+        if text is None:
+            text = element.get(attribute)
         if text is not None and text.strip():
             self.pending.append((obj, feature, text, element.sourceline, attribute, many, names_of))
 
@@ -621,7 +633,7 @@ class _Reader:
             elif tag == "classifier" or (
                 is_system and tag in ("componentImplementation", "systemImplementation")
             ):
-                if child.get(_XSI_TYPE) is not None:  # 2014's systemImplementation has none
+                if child.get(_XSI_TYPE_KEY) is not None:  # 2014's systemImplementation has none
                     self.check_link_type(child, _CLASSIFIER_TYPES)
                 if classifier is None or tag != "classifier":
                     classifier = self.link_name(child)
@@ -686,7 +698,7 @@ class _Reader:
             if tag == "ownedPropertyAssociation":
                 pas.append(self.property_association(child))
             elif tag == "feature":
-                if (child.get(_XSI_TYPE), _FEATURE_TYPES) not in ok_types:
+                if (child.get(_XSI_TYPE_KEY), _FEATURE_TYPES) not in ok_types:
                     self.check_link_type(child, _FEATURE_TYPES)
                 self.href(child)
             elif tag == "featureInstance":
@@ -722,10 +734,11 @@ class _Reader:
             set_value(obj, f["ConnectionInstance.complete"], True)
         if el.get("bidirectional") == "true":
             set_value(obj, f["ConnectionInstance.bidirectional"], True)
-        for attribute in ("source", "destination"):
-            if el.get(attribute) is None:
+        for attribute, slot in self.s_connection_ends:
+            text = el.get(attribute)
+            if text is None:
                 raise self.error(f"connection instance {name!r} has no {attribute}", el)
-            self.ref_later(obj, f[f"ConnectionInstance.{attribute}"], el, attribute)
+            self.ref_later(obj, slot, el, attribute, text=text)
         if el.get("inSystemOperationMode") is not None:
             self.ref_later(
                 obj,
@@ -755,14 +768,15 @@ class _Reader:
         obj = fast.new(self.cls["ConnectionReference"])
         if self.has_ids:
             self.register_id(obj, el)
-        for attribute in ("context", "source", "destination"):
-            if el.get(attribute) is None:
+        for attribute, slot in self.s_reference_ends:
+            text = el.get(attribute)
+            if text is None:
                 raise self.error(f"a connection reference has no {attribute}", el)
-            self.ref_later(obj, f[f"ConnectionReference.{attribute}"], el, attribute)
+            self.ref_later(obj, slot, el, attribute, text=text)
         ok_types = self.link_types_ok
         for child in el:
             if child.tag == "connection":
-                if (child.get(_XSI_TYPE), _CONNECTION_TYPES) not in ok_types:
+                if (child.get(_XSI_TYPE_KEY), _CONNECTION_TYPES) not in ok_types:
                     self.check_link_type(child, _CONNECTION_TYPES)
                 fast.set_value(obj, f["ConnectionReference.connection"], self.link_name(child))
             else:
@@ -938,7 +952,7 @@ class _Reader:
         return obj
 
     def value(self, el: etree._Element, prop: str | None, field_href: tuple[str, str] | None) -> EObject:
-        handler = self.handler_cache.get(el.get(_XSI_TYPE))
+        handler = self.handler_cache.get(el.get(_XSI_TYPE_KEY))
         if handler is None:
             handler = _VALUE_HANDLERS.get(self.xsi_type(el))
             if handler is None:
@@ -960,7 +974,7 @@ class _Reader:
             number = convert("0")
         else:
             try:
-                number = convert(text.strip())
+                number = convert(text)  # int() and float() ignore surrounding whitespace
             except ValueError:
                 raise self.error(f"value {text!r} is not a number", el, "value") from None
         fast.set_value(obj, value_slot, number)
@@ -1293,7 +1307,7 @@ class _Reader:
                     opaque[uri] = opaque.get(uri, 0) + len(targets)
                 continue
             for obj, feature_name in targets:
-                obj.__dict__[feature_name].__dict__["_value"] = decoded
+                obj.__dict__[feature_name]._value = decoded
         for href, (count, why) in sorted(undecoded.items()):
             self.warn(
                 f"{count} reference(s) to {href} do not decode consistently in any known OSATE era ({why}); "

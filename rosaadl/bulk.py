@@ -125,6 +125,8 @@ def _value_holder(feature) -> type:
         "is_ref": is_ref,
         "is_cont": bool(is_ref and feature.containment),
         "generic_type": None,
+        # what each holder stores, in slots (read and written as attributes, not in __dict__)
+        "__slots__": ("owner", "_value"),
     }
     return type(EValue.__name__, (EValue,), namespace)
 

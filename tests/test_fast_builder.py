@@ -175,6 +175,13 @@ def test_fast_objects_make_pyecore_s_per_object_state_on_first_read() -> None:
     feature.name = "renamed"
     fast.units[0].classifiers[0].name = "quiet"
     assert seen == ["renamed"]
+    # the value holders check types and unset as pyecore's own do
+    from pyecore.valuecontainer import BadValueError
+
+    with pytest.raises(BadValueError):
+        feature.name = 5
+    del feature.classifier
+    assert feature.classifier is None and feature.name == "renamed"
     assert feature.listeners is not fast.units[0].classifiers[0].listeners
     assert feature.dyn_inst is feature and "listeners" in vars(feature)
 
