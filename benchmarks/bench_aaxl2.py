@@ -236,17 +236,28 @@ def _pyecore_load(metamodel_dir: Path, path: Path) -> int:
 # --------------------------------------------------------------------------- timing
 
 
-def _best_pair(floor_func, ours_func, repeat: int, min_seconds: float = 0.1) -> tuple[float, float]:
+def _best_pair(floor_func, ours_func, repeat: int, min_seconds: float = 0.1) -> dict[str, float]:
     """Best CPU times (process time: other processes do not count) of the floor and of ours.
 
-    Each is measured in blocks of back-to-back calls, so that it runs in its own steady state
-    (a parse right after a large model was freed runs on warm allocator memory, an import right
-    after a parse does not); the blocks alternate (floor, ours, floor, ours, ...), four rounds,
-    so that both see the same drift of the machine's speed. A block is at least ``repeat``
-    calls, more for small files, until ``min_seconds``. ``gc.collect()`` before each call
-    starts every measurement from the same state; collections a call triggers count.
+    Each is measured in blocks of back-to-back calls; the blocks alternate (floor, ours, floor,
+    ours, ...), four rounds, so that both see the same drift of the machine's speed. A block is
+    at least ``repeat`` calls, more for small files, until ``min_seconds``. ``gc.collect()``
+    before each call starts every measurement from the same state; collections a call
+    triggers count.
+
+    Two bests per function: ``floor``/``ours``, over every call, and ``floor_settled``/
+    ``ours_settled``, over the calls that follow a call of the same function (each block but
+    its first call). They differ for large files: the first parse after an import runs on
+    memory the import left consolidated, while back to back, each parse pays glibc's merge of
+    the previous tree's freed nodes (for the generated file, about 65 against 105 ms).
+    ``floor``, the lowest, is the one the goal is judged against.
     """
-    best = {"floor": float("inf"), "ours": float("inf")}
+    best = {
+        "floor": float("inf"),
+        "ours": float("inf"),
+        "floor_settled": float("inf"),
+        "ours_settled": float("inf"),
+    }
     for _round in range(4):
         for key, func in (("floor", floor_func), ("ours", ours_func)):
             spent, calls = 0.0, 0
@@ -256,9 +267,11 @@ def _best_pair(floor_func, ours_func, repeat: int, min_seconds: float = 0.1) -> 
                 func()
                 elapsed = time.process_time() - start
                 best[key] = min(best[key], elapsed)
+                if calls:
+                    best[f"{key}_settled"] = min(best[f"{key}_settled"], elapsed)
                 spent += elapsed
                 calls += 1
-    return best["floor"], best["ours"]
+    return best
 
 
 def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
@@ -276,9 +289,8 @@ def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
     result = loads_aaxl2(data, str(path))
     objects = sum(1 for _ in model.walk(result.model))
     del result
-    floor, ours = _best_pair(
-        lambda: parse_xml_bytes(data, str(path)), lambda: loads_aaxl2(data, str(path)), repeat
-    )
+    best = _best_pair(lambda: parse_xml_bytes(data, str(path)), lambda: loads_aaxl2(data, str(path)), repeat)
+    floor, ours = best["floor"], best["ours"]
     pyecore_s = None
     note = ""
     if metamodel_dir is not None:
@@ -295,7 +307,9 @@ def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
         "objects": objects,
         "floor": floor,
         "first_parse": first_parse,
+        "floor_settled": best["floor_settled"],
         "ours": ours,
+        "ours_settled": best["ours_settled"],
         "pyecore": pyecore_s,
         "note": note,
     }
@@ -314,7 +328,7 @@ def _breakdown(path: Path) -> dict[str, float]:
         times = {}
         start = time.process_time()
         with aaxl2.gc_paused():
-            tree = parse_xml_bytes(data, str(path))
+            tree = parse_xml_bytes(data, str(path), remove_blank_text=True)  # as the import parses
             times["parse"] = time.process_time() - start
             reader = aaxl2._Reader(str(path), tree, strict=False)
             mark = time.process_time()
@@ -406,7 +420,12 @@ def main(argv: list[str]) -> int:
     big = rows[-1][1]
     worst = max(r["ours"] / r["floor"] for _, r in rows[:-1]) if len(rows) > 1 else float("nan")
     print(
-        f"goal ours <= 5x floor: generated {big['ours'] / big['floor']:.1f}x "
+        f"generated file, each back to back: floor {big['floor_settled'] * 1000:.1f} ms, ours "
+        f"{big['ours_settled'] * 1000:.1f} ms ({big['ours_settled'] / big['floor_settled']:.1f}x); "
+        f"the first parse in the run {big['first_parse'] * 1000:.1f} ms"
+    )
+    print(
+        f"goal ours <= 5x floor: generated {big['ours'] / big['floor']:.1f}x the lowest parse "
         f"({big['ours'] / big['first_parse']:.1f}x its first parse in the run), "
         f"worst corpus file {worst:.1f}x"
     )
