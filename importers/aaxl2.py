@@ -394,6 +394,7 @@ class _Reader:
         # a named value's (uri, fragment) → (its name, whether it is positional)
         self.named_values: dict[tuple[str, str], tuple[str, bool]] = {}
         self.s_named_name = self.f["NamedValue.name"]
+        self.s_pa_values = self.f["PropertyAssociation.ownedValues"]
         self.s_reference_ends = tuple(
             (end, self.f[f"ConnectionReference.{end}"]) for end in ("context", "source", "destination")
         )
@@ -498,6 +499,16 @@ class _Reader:
             self.href_cache[text] = found
             self.note_uri(uri)
         return found
+
+    def link_checked(self, element: etree._Element) -> None:
+        """A link element whose target the instance object already names (a subcomponent's, a
+        feature's): only its href's presence and file are noted (see :meth:`sidecars`)."""
+        text = element.get("href")
+        if text is None:
+            raise self.error(f"<{element.tag}> has no href", element)
+        uri = text.partition("#")[0]
+        if uri not in self.seen_uris:
+            self.note_uri(uri)
 
     def note_uri(self, uri: str) -> None:
         if uri and uri not in self.seen_uris:
@@ -627,7 +638,7 @@ class _Reader:
                 lists.setdefault(tag, []).append(self.connection_instance(child))
             elif tag == "subcomponent":
                 self.check_link_type(child, _SUBCOMPONENT_TYPES)
-                self.href(child)
+                self.link_checked(child)
             elif tag == "index":
                 index.append(self.int_text(child.text, child, "index"))
             elif tag == "classifier" or (
@@ -700,7 +711,7 @@ class _Reader:
             elif tag == "feature":
                 if (child.get(_XSI_TYPE_KEY), _FEATURE_TYPES) not in ok_types:
                     self.check_link_type(child, _FEATURE_TYPES)
-                self.href(child)
+                self.link_checked(child)
             elif tag == "featureInstance":
                 subs.append(self.feature_instance(child))
             elif tag == "index":
@@ -858,7 +869,7 @@ class _Reader:
             if tag == "ownedPropertyAssociation":
                 pas.append(self.property_association(child))
             elif tag in _DECLARATIVE_LINKS:
-                self.href(child)
+                self.link_checked(child)
             else:
                 self.unknown(child, where)
         if pas:
@@ -896,9 +907,8 @@ class _Reader:
             _type, uri, frag = _split_ref_attribute(text)
             prop = self.property_name(f"{uri}#{frag}", obj, el)
         if value_elements:
-            fast.set_many(
-                obj, f["PropertyAssociation.ownedValues"], [self.modal_value(v, prop) for v in value_elements]
-            )
+            modal_value = self.modal_value
+            fast.set_many(obj, self.s_pa_values, [modal_value(v, prop) for v in value_elements])
         if el.get("append") == "true":
             fast.set_value(obj, f["PropertyAssociation.append"], True)
         if el.get("constant") == "true":
