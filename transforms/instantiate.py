@@ -1534,7 +1534,7 @@ class Instantiator:
                         info.src = src
                         self._add_connection(info, dst)
             elif not src.children:
-                target = _find_destination(info, dst)
+                target = _find_member(info, dst, at_destination=True)
                 if target is not None and ((info.across and target.incoming) or target.outgoing):
                     self._expand(parent, info, src, target, src_match, dst_match)
                 elif src.category == "featureGroup":
@@ -1546,7 +1546,7 @@ class Instantiator:
                     info.src = src
                     self._add_connection(info, dst)
             elif not dst.children:
-                target = _find_source(info, src)
+                target = _find_member(info, src, at_destination=False)
                 if target is not None and ((info.across and target.outgoing) or target.incoming):
                     self._expand(parent, info, target, dst, src_match, dst_match)
                 elif dst.category == "featureGroup" or info.src_to_match:
@@ -2484,37 +2484,32 @@ def _find_leaf(group: _FI, key: str) -> _FI | None:
     return None
 
 
-def _find_destination(info: _Info, group: _FI) -> _FI | None:
-    target: Any = None
-    for src, dst in zip(info.sources, info.destinations, strict=False):
-        if target is not None and target is not src:
-            if isinstance(target, _FI) and target.parent is src:
-                found = _find_leaf(group, target.key)
-                if found is None and isinstance(dst, _FI) and target in dst.children:
-                    position = dst.children.index(target)
-                    if position < len(group.children):
-                        found = group.children[position]
-                return found
-            target = dst
-        else:
-            target = dst
-    return None
+def _find_member(info: _Info, group: _FI, *, at_destination: bool) -> _FI | None:
+    """OSATE's findDestinationFeatureInstance (``at_destination``) and
+    findSourceFeatureInstance: the member of feature group ``group``, at that end of the
+    connection, that corresponds to the leaf feature the connection reached the other end's
+    feature group through.
 
-
-def _find_source(info: _Info, group: _FI) -> _FI | None:
+    Walking the connection's steps from the other end (sources and destinations pairwise,
+    backwards for the source end), the step whose near end is the feature group that holds
+    the previous step's far end tells the member: the leaf of ``group`` with its name, or else
+    (a feature group type and the inverse that names its features differently) the member at
+    its position in that feature group.
+    """
+    steps = list(zip(info.sources, info.destinations, strict=False))
+    if not at_destination:
+        steps.reverse()
     target: Any = None
-    for src, dst in reversed(list(zip(info.sources, info.destinations, strict=False))):
-        if target is not None and target is not dst:
-            if isinstance(target, _FI) and target.parent is dst:
-                found = _find_leaf(group, target.key)
-                if found is None and isinstance(dst, _FI) and target in dst.children:
-                    position = dst.children.index(target)
-                    if position < len(group.children):
-                        found = group.children[position]
-                return found
-            target = src
-        else:
-            target = src
+    for src, dst in steps:
+        near, far = (src, dst) if at_destination else (dst, src)
+        if target is not None and target is not near and isinstance(target, _FI) and target.parent is near:
+            found = _find_leaf(group, target.key)
+            if found is None:
+                position = near.children.index(target)
+                if position < len(group.children):
+                    found = group.children[position]
+            return found
+        target = far
     return None
 
 

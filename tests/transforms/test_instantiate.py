@@ -849,3 +849,35 @@ def test_features_are_instantiated_in_osate_s_order():
     system = instantiate(read_string(_FEATURES_ORDERED, "fordered.aadl"), "FOrdered::top.i")
     cam = model.find_instance(system, "cam")
     assert [f.name for f in cam.featureInstances] == ["sample", "cmd", "lan", "power", "image"]
+
+
+def test_a_feature_group_member_is_found_by_name_or_else_by_position_at_either_end():
+    """OSATE's findDestinationFeatureInstance / findSourceFeatureInstance: the member of the
+    feature group at one end that matches the leaf the connection reached the other end's
+    group through; by position when an inverse names its features differently."""
+    from rosaadl.transforms import instantiate as inst
+
+    def fi(name, parent=None, children=()):
+        node = inst._FI(None, None, name, name.lower(), 0, "eventPort", "out", None, parent)
+        for child in children:
+            child.parent = node
+        node.children = list(children)
+        return node
+
+    p1, p2 = fi("p1"), fi("P2")
+    outs = fi("fa", children=[p1, p2])  # the group the connection left through its member P2
+    x = fi("x")
+    same = fi("fb", children=[fi("p1"), fi("p2")])
+    renamed = fi("fb", children=[fi("q1"), fi("q2")])
+    # towards the destination: x -> fa.P2, then fa -> fb
+    info = inst._Info(x)
+    info.sources, info.destinations = [x, outs], [p2, renamed]
+    assert inst._find_member(info, same, at_destination=True) is same.children[1]
+    assert inst._find_member(info, renamed, at_destination=True) is renamed.children[1]
+    # towards the source, the mirror image: fb -> fa, then fa.P2 -> x
+    info.sources, info.destinations = [renamed, p2], [outs, x]
+    assert inst._find_member(info, same, at_destination=False) is same.children[1]
+    assert inst._find_member(info, renamed, at_destination=False) is renamed.children[1]
+    # no step leaves a feature group: nothing to narrow to
+    info.sources, info.destinations = [x], [renamed]
+    assert inst._find_member(info, renamed, at_destination=True) is None
