@@ -249,7 +249,7 @@ def _best_pair(floor_func, ours_func, repeat: int, min_seconds: float = 0.1) -> 
     ``ours_settled``, over the calls that follow a call of the same function (each block but
     its first call). They differ for large files: the first parse after an import runs on
     memory the import left consolidated, while back to back, each parse pays glibc's merge of
-    the previous tree's freed nodes (for the generated file, about 65 against 105 ms).
+    the previous tree's freed nodes (for the generated file, about 55-80 against 100-110 ms).
     ``floor``, the lowest, is the one the goal is judged against.
     """
     best = {

@@ -114,8 +114,9 @@ def _value_holder(feature) -> type:
 
     What is the same for every value of the feature (the feature, whether it is a reference
     or a containment, no generic type yet) is held by the class, so that each holder stores
-    only its owner and its value: half the memory of an ``EValue`` and fewer writes. pyecore
-    reads these as attributes, and writes them (``generic_type``) on the holder itself.
+    only its owner and its value, in slots: about a third less memory than an ``EValue`` and
+    four writes fewer. pyecore reads these as attributes, and writes them (``generic_type``)
+    on the holder itself.
     """
     is_ref = bool(feature.is_reference)
     namespace = {
@@ -184,8 +185,8 @@ class FastFactory:
 
     The objects behave exactly like ones made through the normal constructor and setters
     (reading, setting, containment, saving, ``delete()``): every set feature has pyecore's
-    value holder (an ``EValue`` whose feature is held by its class, see :func:`_value_holder`,
-    or a collection) and is recorded in ``_isset`` (what pyecore
+    value holder (an ``EValue`` or ordered set whose feature is held by its class, see
+    :func:`_value_holder`, or another collection) and is recorded in ``_isset`` (what pyecore
     saves), contained objects know their container and containment feature, and referenced
     objects record the inverse reference pyecore keeps for ``delete()``. What is skipped is
     what a new, unobserved object does not need: notifications (no listener can be attached
