@@ -506,9 +506,7 @@ class _Reader:
         text = element.get("href")
         if text is None:
             raise self.error(f"<{element.tag}> has no href", element)
-        uri = text.partition("#")[0]
-        if uri not in self.seen_uris:
-            self.note_uri(uri)
+        self.note_uri(text.partition("#")[0])
 
     def note_uri(self, uri: str) -> None:
         if uri and uri not in self.seen_uris:
@@ -1050,8 +1048,7 @@ class _Reader:
             uri, frag = target
             found = self.named_values[target] = (_name_of(uri, frag), not frag or _is_positional(frag))
         if found[1]:
-            key = (*target, "enum", prop, field_href)
-            self.literal_uses.setdefault(key, []).append((obj, "name"))
+            self.literal_use((*target, "enum", prop, field_href), obj, "name")
         self.fast.set_value(obj, self.s_named_name, found[0])
         return obj
 
@@ -1082,7 +1079,7 @@ class _Reader:
         f, fast = self.f, self.fast
         new, set_value, set_child = fast.new, fast.set_value, fast.set_child
         c_field, s_name, s_value = self.cls["FieldValue"], f["FieldValue.name"], f["FieldValue.value"]
-        literal_uses, field_names, value = self.literal_uses, self.field_names, self.value
+        field_names, value = self.field_names, self.value
         obj = new(self.cls["RecordValue"])
         fields = []
         for child in el:
@@ -1117,8 +1114,7 @@ class _Reader:
                 )
             set_value(field_obj, s_name, name[0])
             if name[1]:
-                key = (*target, "field", prop, field_href)
-                literal_uses.setdefault(key, []).append((field_obj, "name"))
+                self.literal_use((*target, "field", prop, field_href), field_obj, "name")
             set_child(field_obj, s_value, value(value_el, prop, target))
             fields.append(field_obj)
         if fields:

@@ -248,7 +248,7 @@ class FastFactory:
         d[slot.name] = ev
         d["_isset"][slot.feature] = None
         if slot.is_ref and value is not None:
-            value._inverse_rels.add((obj, slot.feature))
+            value.__dict__["_inverse_rels"].add((obj, slot.feature))
 
     @staticmethod
     def set_child(obj: EObject, slot: FeatureSlot, child: EObject) -> None:
@@ -308,7 +308,7 @@ class FastFactory:
                     cd["_inverse_rels"].add(couple)
             else:
                 for target in values:
-                    target._inverse_rels.add(couple)
+                    target.__dict__["_inverse_rels"].add(couple)
 
     @staticmethod
     def items(collection) -> Any:
@@ -331,13 +331,11 @@ class FastFactory:
         if slot.is_ref:
             couple = (obj, feature)
             for value in values:
+                vd = value.__dict__
                 if slot.containment:
-                    vd = value.__dict__
                     vd["_container"] = obj
                     vd["_containment_feature"] = feature
-                    vd["_inverse_rels"].add(couple)
-                else:
-                    value._inverse_rels.add(couple)
+                vd["_inverse_rels"].add(couple)
 
 
 @contextmanager

@@ -2502,7 +2502,7 @@ def _find_member(info: _Info, group: _FI, *, at_destination: bool) -> _FI | None
     target: Any = None
     for src, dst in steps:
         near, far = (src, dst) if at_destination else (dst, src)
-        if target is not None and target is not near and isinstance(target, _FI) and target.parent is near:
+        if isinstance(target, _FI) and target.parent is near:
             found = _find_leaf(group, target.key)
             if found is None:
                 position = near.children.index(target)
