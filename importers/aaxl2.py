@@ -30,11 +30,11 @@ What the file format gives, and how it is decoded:
 Speed: pyecore's normal object construction costs about 25 µs per object (feature lookups,
 value checks, notifications to listeners a new object cannot have yet). The reader builds
 objects through :class:`FastFactory`, which writes the state pyecore would (attribute value
-holders, ``_isset`` so that saving works, container and containment feature, inverse
-references) directly, in about a tenth of that time, and pauses the cyclic garbage collector
-while it builds (:func:`gc_paused`). The file is parsed without its indentation (half the
-nodes), and the parsed document is freed last (:meth:`_Reader.release`), so that glibc does
-not merge its freed nodes within the call.
+holders, container and containment feature; ``_isset``, which saving reads, and inverse
+references are made on first read from those) directly, in about a tenth of that time, and
+pauses the cyclic garbage collector while it builds (:func:`gc_paused`). The file is parsed
+without its indentation (half the nodes), and the parsed document is freed last
+(:meth:`_Reader.release`), so that glibc does not merge its freed nodes within the call.
 """
 
 from __future__ import annotations

@@ -3,7 +3,8 @@
 pyecore spends most of an object's creation on change notifications, type checks and a
 process-wide registry of every object; a reader that makes tens of thousands of new,
 unobserved objects needs none of that. :class:`FastFactory` fills pyecore's own state directly
-(value holders, ``_isset``, containers, inverse references), so the objects behave exactly like
+(value holders, containers) and leaves the rest (``_isset``, inverse references, listener
+lists) to be made on first read from what the object holds, so the objects behave exactly like
 ones made with :func:`rosaadl.model.new` (saving, setters, ``delete()``; tested).
 :class:`FastBuilder` is the same by feature *name*, for code that is not a hot loop's inner
 body. :func:`gc_paused` keeps the cyclic garbage collector out of the way while building.
@@ -61,6 +62,55 @@ class _MadeOnRead:
         return value
 
 
+class _IssetOnRead:
+    """The default of ``_isset`` (the features pyecore saves, in the order they were set): made
+    on the first read from the object's value holders and collections that :class:`FastFactory`
+    made (instances of :class:`_Built`, in the order they were stored), then kept on the object.
+
+    pyecore only ever adds to ``_isset``, and always through a read of it, so this is the set
+    pyecore would hold: every feature FastFactory filled, then pyecore's own additions. A holder
+    pyecore's getter makes for a feature never set is not a ``_Built`` one and does not count.
+    """
+
+    __slots__ = ()
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            return self
+        d = obj.__dict__
+        isset = InternalSet()
+        for value in d.values():
+            if isinstance(value, _Built):
+                isset[value.feature] = None
+        d["_isset"] = isset
+        return isset
+
+
+class _InverseOnRead:
+    """The default of ``_inverse_rels`` (the ``(owner, feature)`` pairs that refer to the
+    object, which pyecore's ``delete()`` follows): made on the first read, then kept on the
+    object. Most objects are only contained, and nothing else refers to them, so most never
+    need one.
+
+    It starts with the containment pair :class:`FastFactory` recorded (``_built_containment``),
+    not with ``_container``: pyecore clears ``_container`` before it takes the pair out of this
+    set, so the pair must be known without it. pyecore changes a container only together with
+    this set (it takes the old pair out, puts the new one in), so when first read, the set
+    pyecore would hold is still the recorded pair. A non-containment reference is added
+    through a read, so the set exists before anything else refers to the object.
+    """
+
+    __slots__ = ()
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            return self
+        d = obj.__dict__
+        built = d.get("_built_containment")
+        rels = d["_inverse_rels"] = set() if built is None else {built}
+        return rels
+
+
 class _Itself:
     """The default of ``dyn_inst``: pyecore sets it to the object itself on every object, and
     to the ``EClass`` on the class (which this keeps for reads on the class)."""
@@ -88,11 +138,19 @@ def _class_defaults(cls: type) -> None:
         raise TypeError(f"{cls.__name__} is not a class made from an EClass; use its constructor")
     for name in _NONE_ATTRIBUTES:
         setattr(cls, name, None)
+    cls._isset = _IssetOnRead()
+    cls._inverse_rels = _InverseOnRead()
     cls.listeners = _MadeOnRead("listeners")
     cls._eternal_listener = _MadeOnRead("_eternal_listener")
     eclass = cls.__dict__.get("dyn_inst")
     cls.dyn_inst = eclass if isinstance(eclass, _Itself) else _Itself(eclass)
     cls._fast_defaults = cls  # read by FastFactory.new: set on this class, not inherited
+
+
+class _Built:
+    """Marks the value holders and collections :class:`FastFactory` makes (see :class:`_IssetOnRead`)."""
+
+    __slots__ = ()
 
 
 class _Shared:
@@ -123,7 +181,7 @@ def _holder_class(base: type, feature, **attributes: Any) -> type:
         "generic_type": None,
         **attributes,
     }
-    return type(base.__name__, (base,), namespace)
+    return type(base.__name__, (base, _Built), namespace)
 
 
 @cache
@@ -139,6 +197,13 @@ def _ordered_set_holder(feature) -> type:
     """pyecore's ordered set (``EOrderedSet``) for the values of one many-valued feature: each
     stores only its owner and its items (``items`` and ``map``, as ``OrderedSet`` keeps them)."""
     return _holder_class(EOrderedSet, feature, _orderedset_update=False)
+
+
+@cache
+def _collection_holder(base: type, feature) -> type:
+    """pyecore's collection ``base`` for the values of one many-valued feature, made through its
+    constructor (the ordered sets that can be are filled directly: :func:`_ordered_set_holder`)."""
+    return _holder_class(base, feature)
 
 
 class FeatureSlot:
@@ -158,15 +223,17 @@ class FeatureSlot:
             if feature.derived:
                 raise TypeError(f"{feature.name} is derived; it cannot be filled")
             if feature.ordered and feature.unique:
-                self.collection = EOrderedSet
+                base = EOrderedSet
             elif feature.ordered:
-                self.collection = EList
+                base = EList
             elif feature.unique:
-                self.collection = ESet
+                base = ESet
             else:
-                self.collection = EBag
-            if self.collection is EOrderedSet and _ORDERED_SET_FIELDS:
+                base = EBag
+            if base is EOrderedSet and _ORDERED_SET_FIELDS:
                 self.holder = _ordered_set_holder(feature)
+            else:
+                self.collection = _collection_holder(base, feature)
         etype = feature.eType
         self.target = etype.python_class if self.is_ref else None
 
@@ -177,13 +244,14 @@ class FastFactory:
     The objects behave exactly like ones made through the normal constructor and setters
     (reading, setting, containment, saving, ``delete()``): every set feature has pyecore's
     value holder (an ``EValue`` or ordered set whose feature is held by its class, see
-    :func:`_value_holder`, or another collection) and is recorded in ``_isset`` (what pyecore
-    saves), contained objects know their container and containment feature, and referenced
-    objects record the inverse reference pyecore keeps for ``delete()``. What is skipped is
-    what a new, unobserved object does not need: notifications (no listener can be attached
-    yet), feature lookups by name (done once, in :class:`FeatureSlot`), the type check of
-    each value (the caller passes values of the right type), and the entry in pyecore's
-    debugging registry of all objects (see :meth:`new`). The garbage collector is best paused
+    :func:`_value_holder`, or another collection), from which ``_isset`` (what pyecore saves)
+    is made when first read; contained objects know their container and containment feature,
+    and referenced objects record the inverse reference pyecore keeps for ``delete()`` (made
+    on first read as well for the containment pair alone, see :class:`_InverseOnRead`). What
+    is skipped is what a new, unobserved object does not need: notifications (no listener can
+    be attached yet), feature lookups by name (done once, in :class:`FeatureSlot`), the type
+    check of each value (the caller passes values of the right type), and the entry in
+    pyecore's debugging registry of all objects (see :meth:`new`). The garbage collector is best paused
     while many objects are made (every pyecore object is part of a reference cycle): see
     :func:`gc_paused`.
     """
@@ -207,17 +275,18 @@ class FastFactory:
     def new(cls: type) -> EObject:
         """A new object of pyecore class ``cls`` (``eclass.python_class``), with no feature set.
 
-        The state reads exactly as what ``EObject.__new__`` sets, with two differences. Only
-        ``_isset`` and ``_inverse_rels`` are written on the object. The attributes that hold
-        ``None`` (container, containment feature, resource, internal id), ``_staticEClass``
-        (``False`` on a metamodel's classes), ``dyn_inst`` (the object itself) and the two
-        listener lists (made empty on first read) are defaults on the class (see
-        :func:`_class_defaults`); pyecore writes them on the object when it sets them. (The
-        inverse references cannot wait for a first read: pyecore clears ``_container`` before
-        it removes the containment pair from them.) And the object is not added to pyecore's
-        process-wide weak registry of every object ever made (what the debugging helper
-        ``allInstances()`` iterates): that registry costs as much as the object itself and
-        nothing in rosaadl reads it. :meth:`register` adds objects to it when wanted.
+        The state reads exactly as what ``EObject.__new__`` and pyecore's setters make, but
+        nothing is written on the object until a feature is set: what pyecore keeps per object
+        is a default on the class (see :func:`_class_defaults`), and pyecore writes its own
+        value on the object when it sets one. The attributes that hold ``None`` (container,
+        containment feature, resource, internal id), ``_staticEClass`` (``False`` on a
+        metamodel's classes) and ``dyn_inst`` (the object itself) read from the class; the
+        listener lists, ``_isset`` and ``_inverse_rels`` are made on the first read, from what
+        the object holds (:class:`_IssetOnRead`, :class:`_InverseOnRead`). And the object is not
+        added to pyecore's process-wide weak registry of every object ever made (what the
+        debugging helper ``allInstances()`` iterates): that registry costs as much as the
+        object itself and nothing in rosaadl reads it. :meth:`register` adds objects to it
+        when wanted.
         """
         try:
             ready = cls._fast_defaults is cls  # one cached lookup
@@ -225,12 +294,7 @@ class FastFactory:
             ready = False
         if not ready:
             _class_defaults(cls)
-        # attribute by attribute: Python keeps them in the class's shared-key layout, which is
-        # about twice as fast as assigning a fresh ``__dict__``
-        obj = _object_new(cls)
-        obj._isset = InternalSet()
-        obj._inverse_rels = set()
-        return obj
+        return _object_new(cls)
 
     @staticmethod
     def register(objects: Iterable[EObject]) -> None:
@@ -246,9 +310,10 @@ class FastFactory:
         ev._value = value
         d = obj.__dict__
         d[slot.name] = ev
-        d["_isset"][slot.feature] = None
+        if "_isset" in d:  # already read: keep it whole
+            d["_isset"][slot.feature] = None
         if slot.is_ref and value is not None:
-            value.__dict__["_inverse_rels"].add((obj, slot.feature))
+            value._inverse_rels.add((obj, slot.feature))
 
     @staticmethod
     def set_child(obj: EObject, slot: FeatureSlot, child: EObject) -> None:
@@ -259,11 +324,15 @@ class FastFactory:
         ev._value = child
         d = obj.__dict__
         d[slot.name] = ev
-        d["_isset"][feature] = None
+        if "_isset" in d:
+            d["_isset"][feature] = None
+        couple = (obj, feature)
         cd = child.__dict__
         cd["_container"] = obj
         cd["_containment_feature"] = feature
-        cd["_inverse_rels"].add((obj, feature))
+        cd["_built_containment"] = couple
+        if "_inverse_rels" in cd:  # already read (the child was referred to): keep it whole
+            cd["_inverse_rels"].add(couple)
 
     @staticmethod
     def set_many(obj: EObject, slot: FeatureSlot, values: list) -> None:
@@ -297,18 +366,27 @@ class FastFactory:
                 list.extend(collection, values)
         d = obj.__dict__
         d[slot.name] = collection
-        d["_isset"][feature] = None
+        if "_isset" in d:
+            d["_isset"][feature] = None
         if slot.is_ref:
-            couple = (obj, feature)
-            if slot.containment:
-                for child in values:
-                    cd = child.__dict__
-                    cd["_container"] = obj
-                    cd["_containment_feature"] = feature
+            FastFactory._refer(obj, slot, values)
+
+    @staticmethod
+    def _refer(obj: EObject, slot: FeatureSlot, values: Iterable[EObject]) -> None:
+        """Record that ``obj`` refers to (or, for a containment, contains) each of ``values``."""
+        feature = slot.feature
+        couple = (obj, feature)
+        if slot.containment:
+            for child in values:
+                cd = child.__dict__
+                cd["_container"] = obj
+                cd["_containment_feature"] = feature
+                cd["_built_containment"] = couple
+                if "_inverse_rels" in cd:  # already read (the child was referred to)
                     cd["_inverse_rels"].add(couple)
-            else:
-                for target in values:
-                    target.__dict__["_inverse_rels"].add(couple)
+        else:
+            for target in values:
+                target._inverse_rels.add(couple)
 
     @staticmethod
     def items(collection) -> Any:
@@ -319,23 +397,19 @@ class FastFactory:
 
     @staticmethod
     def extend(obj: EObject, slot: FeatureSlot, collection, values: Iterable[Any]) -> None:
-        """Append ``values`` to an existing collection of ``obj`` made by :meth:`set_many`."""
-        feature = slot.feature
+        """Append ``values`` to an existing collection of ``obj`` (made by :meth:`set_many` or
+        by pyecore)."""
+        values = list(values)
         if isinstance(collection, OrderedSet):
             add = OrderedSet.add
             for value in values:
                 add(collection, value)
         else:
             list.extend(collection, values)
-        obj.__dict__["_isset"][feature] = None
+        if not isinstance(collection, _Built):  # pyecore's, made by reading the feature
+            obj._isset[slot.feature] = None
         if slot.is_ref:
-            couple = (obj, feature)
-            for value in values:
-                vd = value.__dict__
-                if slot.containment:
-                    vd["_container"] = obj
-                    vd["_containment_feature"] = feature
-                vd["_inverse_rels"].add(couple)
+            FastFactory._refer(obj, slot, values)
 
 
 @contextmanager

@@ -230,3 +230,120 @@ def test_fast_ordered_sets_keep_the_first_of_repeated_values_and_work_as_pyecore
     reference = model.new("SystemInstance", name="s", category="system")
     reference.componentInstances.extend(model.new("ComponentInstance", name=n) for n in "cd")
     assert model.dumps_json(si) == model.dumps_json(reference)
+
+
+def _with_values(make, literal):
+    """A system with a connection and a component holding a property value, built by ``make``
+    (see the makers below), to change before any of pyecore's per-object state is read."""
+    low, high = make("IntegerValue", value=1, unit="ms"), make("IntegerValue", value=4, unit="ms")
+    modal = make("ModalPropertyValue", value=make("RangeValue", minimum=low, maximum=high))
+    cet = "Timing_Properties::Compute_Execution_Time"
+    pa = make("PropertyAssociation", property=cet, ownedValues=[modal])
+    fi = make("FeatureInstance", name="p", category=literal("FeatureCategory", "data port"))
+    ci = make(
+        "ComponentInstance",
+        name="c",
+        category=literal("ComponentCategory", "thread"),
+        ownedPropertyAssociations=[pa],
+    )
+    si = make(
+        "SystemInstance",
+        name="s",
+        category=literal("ComponentCategory", "system"),
+        featureInstances=[fi],
+        componentInstances=[ci],
+    )
+    make(si, connectionInstances=[make("ConnectionInstance", name="p -> p", source=fi, destination=fi)])
+    return si
+
+
+def _fast_maker():
+    """make(class name, **features) or make(object, **lists to append), with FastBuilder."""
+    b = model.FastBuilder()
+
+    def make(what, **values):
+        single = {name: value for name, value in values.items() if not isinstance(value, list)}
+        obj = b.make(what, **single) if isinstance(what, str) else what
+        for name, items in values.items():
+            if isinstance(items, list):
+                b.add(obj, name, *items)
+        return obj
+
+    return make, b.literal
+
+
+def _slow_maker():
+    """The same with pyecore's constructors and setters."""
+
+    def make(what, **values):
+        if isinstance(what, str):
+            return model.new(what, **values)
+        for name, items in values.items():
+            getattr(what, name).extend(items)
+        return what
+
+    return make, lambda _enum, text: text
+
+
+def _state(root) -> list:
+    """Each object's set features (in order) and inverse references, by position."""
+    objects = [root, *root.eAllContents()]
+    position = {id(obj): i for i, obj in enumerate(objects)}
+    return [
+        (
+            obj.eClass.name,
+            [feature.name for feature in obj._isset],
+            sorted((position.get(id(owner), -1), feature.name) for owner, feature in obj._inverse_rels),
+        )
+        for obj in objects
+    ]
+
+
+def test_pyecore_s_changes_before_any_read_of_its_state_leave_the_state_pyecore_s_own_would_be() -> None:
+    """_isset and _inverse_rels are made on first read: changes pyecore makes first (removing a
+    contained object, unsetting or replacing a single containment, moving, deleting a
+    referenced object, reading an unset feature) must leave them as on pyecore's own objects."""
+    from rosaadl.bulk import FastFactory
+
+    states = []
+    for maker in (_slow_maker, _fast_maker):
+        make, literal = maker()
+        si = _with_values(make, literal)
+        ci = si.componentInstances[0]
+        modal = ci.ownedPropertyAssociations[0].ownedValues[0]
+        # a single containment replaced, then one unset
+        old_range = modal.value
+        modal.value = model.new("IntegerValue", value=2, unit="ms")
+        old_range.maximum = None
+        # a getter's holder for a feature never set is not "set"
+        assert ci.classifier is None and not ci.eIsSet("classifier")
+        # a contained object removed, and one moved to another container
+        other = model.new("SystemInstance", name="other", category="system")
+        other.componentInstances.append(ci)
+        fi = si.featureInstances[0]
+        si.featureInstances.remove(fi)
+        si.featureInstances.append(fi)
+        # a referenced object deleted: the connection's ends are cleared
+        fi.delete()
+        assert si.connectionInstances[0].source is None
+        states.append((_state(si), _state(other), _state(old_range)))
+    assert states[0] == states[1]
+    # a feature set by the factory after the state was read joins it
+    make, literal = _fast_maker()
+    si = _with_values(make, literal)
+    assert [f.name for f in si._isset] == [
+        "name",
+        "category",
+        "featureInstances",
+        "componentInstances",
+        "connectionInstances",
+    ]
+    FastFactory.set_value(si, FastFactory().slot(si.eClass, "classifier"), "P::S.impl")
+    assert "classifier" in [f.name for f in si._isset]
+    # appending to a list pyecore's getter made marks it set
+    b = model.FastBuilder()
+    fi = b.make("FeatureInstance", name="q")
+    assert not fi.featureInstances
+    b.add(fi, "featureInstances", b.make("FeatureInstance", name="r"))
+    assert fi.eIsSet("featureInstances") and fi.featureInstances[0].eContainer() is fi
+    assert (fi, fi.eClass.findEStructuralFeature("featureInstances")) in fi.featureInstances[0]._inverse_rels
