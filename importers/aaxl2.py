@@ -250,6 +250,9 @@ def _metamodel_facts() -> _MetamodelFacts:
     eclasses = {c.name: c for c in mm.eClassifiers if isinstance(c, EClass)}
     enums = {c.name: c for c in mm.eClassifiers if isinstance(c, EEnum)}
     classes = {name: ec.python_class for name, ec in eclasses.items()}
+    for name, cls in classes.items():
+        if not eclasses[name].abstract:
+            FastFactory.prepare(cls)  # the reader makes their objects with object.__new__
     factory = FastFactory()
     f = {}
     wanted = {
@@ -358,6 +361,8 @@ class _Reader:
         self.warnings: list[Diagnostic] = []
         self.fast = FastFactory()
         meta = _metamodel_facts()
+        # the classes are prepared (see _metamodel_facts): FastFactory.new without its check
+        self.new = object.__new__
         self.ec, self.enums, self.cls, self.f = meta.eclasses, meta.enums, meta.classes, meta.slots
         self.enum_cache: dict[tuple[str, str], Any] = dict(meta.enum_literals)
         self.c_pa = self.cls["PropertyAssociation"]
@@ -547,19 +552,27 @@ class _Reader:
             target = (uri, frag)
         return target
 
-    def ref_later(
-        self, obj, feature, element, attribute, *, many=False, names_of: str | None = None, text=None
-    ) -> None:
+    def ref_later(self, obj, feature, element, attribute, *, many=False, names_of: str | None = None) -> None:
         """Resolve reference ``attribute`` into ``feature`` once every object exists.
 
         ``names_of``: the feature holds the *names* of the referenced objects, which must be of
-        that class (modes in which a component or a value exists). ``text``: the attribute's
-        value, when the caller has read it.
+        that class (modes in which a component or a value exists).
         """
-        if text is None:
-            text = element.get(attribute)
+        text = element.get(attribute)
         if text is not None and text.strip():
             self.pending.append((obj, feature, text, element.sourceline, attribute, many, names_of))
+
+    def ends_later(self, obj: EObject, el: etree._Element, ends: tuple, what: str) -> None:
+        """Resolve later each of ``ends`` (``(attribute, slot)`` pairs of single-valued
+        references), which ``el`` must have (a connection's, a connection reference's)."""
+        line = el.sourceline
+        append = self.pending.append
+        for attribute, slot in ends:
+            text = el.get(attribute)
+            if text is None:
+                raise self.error(f"{what} has no {attribute}", el)
+            if text.strip():
+                append((obj, slot, text, line, attribute, False, None))
 
     def register_id(self, obj: EObject, element: etree._Element) -> None:
         if self.has_ids:
@@ -595,7 +608,7 @@ class _Reader:
             self.roots.append(obj)
         if not systems:
             raise self.error("the file holds no instance:SystemInstance root", root_el)
-        aadl_model = fast.new(self.cls["AadlModel"])
+        aadl_model = self.new(self.cls["AadlModel"])
         fast.set_many(aadl_model, f["AadlModel.instances"], systems)
         if components:
             fast.set_many(aadl_model, f["AadlModel.componentInstances"], components)
@@ -604,7 +617,7 @@ class _Reader:
     def component(self, el: etree._Element, cls: type, *, is_system: bool = False) -> EObject:
         f, fast = self.f, self.fast
         set_value = fast.set_value
-        obj = fast.new(cls)
+        obj = self.new(cls)
         if self.has_ids:
             self.register_id(obj, el)
         name = el.get("name")
@@ -676,7 +689,7 @@ class _Reader:
     def feature_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         set_value = fast.set_value
-        obj = fast.new(self.cls["FeatureInstance"])
+        obj = self.new(self.cls["FeatureInstance"])
         if self.has_ids:
             self.register_id(obj, el)
         get = el.get
@@ -727,7 +740,7 @@ class _Reader:
     def connection_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         set_value = fast.set_value
-        obj = fast.new(self.cls["ConnectionInstance"])
+        obj = self.new(self.cls["ConnectionInstance"])
         if self.has_ids:
             self.register_id(obj, el)
         name = el.get("name")
@@ -743,11 +756,7 @@ class _Reader:
             set_value(obj, f["ConnectionInstance.complete"], True)
         if el.get("bidirectional") == "true":
             set_value(obj, f["ConnectionInstance.bidirectional"], True)
-        for attribute, slot in self.s_connection_ends:
-            text = el.get(attribute)
-            if text is None:
-                raise self.error(f"connection instance {name!r} has no {attribute}", el)
-            self.ref_later(obj, slot, el, attribute, text=text)
+        self.ends_later(obj, el, self.s_connection_ends, f"connection instance {name!r}")
         if el.get("inSystemOperationMode") is not None:
             self.ref_later(
                 obj,
@@ -774,14 +783,10 @@ class _Reader:
 
     def connection_reference(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["ConnectionReference"])
+        obj = self.new(self.cls["ConnectionReference"])
         if self.has_ids:
             self.register_id(obj, el)
-        for attribute, slot in self.s_reference_ends:
-            text = el.get(attribute)
-            if text is None:
-                raise self.error(f"a connection reference has no {attribute}", el)
-            self.ref_later(obj, slot, el, attribute, text=text)
+        self.ends_later(obj, el, self.s_reference_ends, "a connection reference")
         ok_types = self.link_types_ok
         for child in el:
             if child.tag == "connection":
@@ -794,7 +799,7 @@ class _Reader:
 
     def flow_specification(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["FlowSpecificationInstance"])
+        obj = self.new(self.cls["FlowSpecificationInstance"])
         self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["FlowSpecificationInstance.name"], name)
@@ -808,7 +813,7 @@ class _Reader:
 
     def end_to_end_flow(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["EndToEndFlowInstance"])
+        obj = self.new(self.cls["EndToEndFlowInstance"])
         self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["EndToEndFlowInstance.name"], name)
@@ -819,7 +824,7 @@ class _Reader:
 
     def mode_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["ModeInstance"])
+        obj = self.new(self.cls["ModeInstance"])
         self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["ModeInstance.name"], name)
@@ -831,7 +836,7 @@ class _Reader:
 
     def mode_transition(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["ModeTransitionInstance"])
+        obj = self.new(self.cls["ModeTransitionInstance"])
         self.register_id(obj, el)
         fast.set_value(obj, f["ModeTransitionInstance.name"], el.get("name") or "")
         self.ref_later(obj, f["ModeTransitionInstance.source"], el, "source")
@@ -842,7 +847,7 @@ class _Reader:
 
     def system_operation_mode(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["SystemOperationMode"])
+        obj = self.new(self.cls["SystemOperationMode"])
         self.register_id(obj, el)
         fast.set_value(obj, f["SystemOperationMode.name"], el.get("name") or "")
         self.ref_later(obj, f["SystemOperationMode.currentModes"], el, "currentMode", many=True)
@@ -852,7 +857,7 @@ class _Reader:
 
     def annex_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["AnnexInstance"])
+        obj = self.new(self.cls["AnnexInstance"])
         self.register_id(obj, el)
         fast.set_value(obj, f["AnnexInstance.name"], el.get("name") or "")
         # the file's indentation is not kept (see _load): the text is indented on its own
@@ -877,7 +882,7 @@ class _Reader:
 
     def property_association(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.c_pa)
+        obj = self.new(self.c_pa)
         if self.has_ids:
             self.register_id(obj, el)
         prop = None
@@ -936,7 +941,7 @@ class _Reader:
 
     def modal_value(self, el: etree._Element, prop: str | None) -> EObject:
         fast = self.fast
-        obj = fast.new(self.c_modal)
+        obj = self.new(self.c_modal)
         if self.has_ids:
             self.register_id(obj, el)
         value = None
@@ -976,7 +981,7 @@ class _Reader:
 
     def _number(self, el, prop, field_href, cls: type, value_slot, unit_slot, convert) -> EObject:
         fast = self.fast
-        obj = fast.new(cls)
+        obj = self.new(cls)
         text = el.get("value")
         if text is None:
             number = convert("0")
@@ -1026,12 +1031,12 @@ class _Reader:
         return self._number(el, prop, field_href, self.c_real, self.s_real_value, self.s_real_unit, float)
 
     def _string(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["StringValue"])
+        obj = self.new(self.cls["StringValue"])
         self.fast.set_value(obj, self.f["StringValue.value"], el.get("value") or "")
         return obj
 
     def _boolean(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["BooleanValue"])
+        obj = self.new(self.cls["BooleanValue"])
         text = el.get("value")
         if text not in (None, "true", "false"):
             raise self.error(f"value {text!r} is not a boolean (true or false)", el, "value")
@@ -1039,7 +1044,7 @@ class _Reader:
         return obj
 
     def _named(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["NamedValue"])
+        obj = self.new(self.cls["NamedValue"])
         target = self.link(el, "namedValue", "NamedValue")
         if target is None:
             raise self.error("a named value names nothing (expected a namedValue reference)", el)
@@ -1054,7 +1059,7 @@ class _Reader:
 
     def _range(self, el, prop, field_href) -> EObject:
         f, fast = self.f, self.fast
-        obj = fast.new(self.cls["RangeValue"])
+        obj = self.new(self.cls["RangeValue"])
         for child in el:
             tag = child.tag
             if tag in ("minimum", "maximum", "delta"):
@@ -1064,7 +1069,7 @@ class _Reader:
         return obj
 
     def _list(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["ListValue"])
+        obj = self.new(self.cls["ListValue"])
         items = []
         for child in el:
             if child.tag == "ownedListElement":
@@ -1077,7 +1082,7 @@ class _Reader:
 
     def _record(self, el, prop, field_href) -> EObject:
         f, fast = self.f, self.fast
-        new, set_value, set_child = fast.new, fast.set_value, fast.set_child
+        new, set_value, set_child = self.new, fast.set_value, fast.set_child
         c_field, s_name, s_value = self.cls["FieldValue"], f["FieldValue.name"], f["FieldValue.value"]
         field_names, value = self.field_names, self.value
         obj = new(self.cls["RecordValue"])
@@ -1122,7 +1127,7 @@ class _Reader:
         return obj
 
     def _classifier(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["ClassifierValue"])
+        obj = self.new(self.cls["ClassifierValue"])
         target = self.link(el, "classifier", "ClassifierValue")
         if target is None:
             raise self.error("a classifier value names no classifier", el)
@@ -1131,7 +1136,7 @@ class _Reader:
         return obj
 
     def _reference(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["ReferenceValue"])
+        obj = self.new(self.cls["ReferenceValue"])
         steps = []
         current = el
         while current is not None:
@@ -1154,7 +1159,7 @@ class _Reader:
         return obj
 
     def _instance_reference(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["InstanceReferenceValue"])
+        obj = self.new(self.cls["InstanceReferenceValue"])
         if el.get("referencedInstanceObject") is None:
             raise self.error("an instance reference value refers to nothing", el)
         self.ref_later(
@@ -1163,12 +1168,12 @@ class _Reader:
         return obj
 
     def _computed(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["ComputedValue"])
+        obj = self.new(self.cls["ComputedValue"])
         self.fast.set_value(obj, self.f["ComputedValue.function"], el.get("function") or "")
         return obj
 
     def _operation(self, el, prop, field_href) -> EObject:
-        obj = self.fast.new(self.cls["OperationValue"])
+        obj = self.new(self.cls["OperationValue"])
         self.fast.set_value(obj, self.f["OperationValue.operator"], el.get("op") or "and")
         operands = [
             self.value(child, prop, field_href) for child in el if child.tag == "ownedPropertyExpression"

@@ -297,6 +297,13 @@ class FastFactory:
         return _object_new(cls)
 
     @staticmethod
+    def prepare(cls: type) -> None:
+        """Make ``cls`` ready, so that ``object.__new__(cls)`` gives what :meth:`new` gives (for
+        readers that make many objects of a few classes known in advance)."""
+        if cls.__dict__.get("_fast_defaults") is not cls:
+            _class_defaults(cls)
+
+    @staticmethod
     def register(objects: Iterable[EObject]) -> None:
         """Add objects made by :meth:`new` to pyecore's ``allInstances()`` registry."""
         for obj in objects:
@@ -336,13 +343,16 @@ class FastFactory:
 
     @staticmethod
     def set_many(obj: EObject, slot: FeatureSlot, values: list) -> None:
-        """Set a many-valued feature (attribute, reference or containment) to the list ``values``."""
+        """Set a many-valued feature (attribute, reference or containment) to the list ``values``.
+
+        An ordered set keeps ``values`` itself as its items: the caller hands the list over.
+        """
         feature = slot.feature
         holder = slot.holder
         if holder is not None:  # an ordered set
             collection = _object_new(holder)
             collection.owner = obj
-            items = list(values)
+            items = values if type(values) is list else list(values)
             if len(items) == 1:
                 index = {items[0]: 0}
             else:
