@@ -562,15 +562,19 @@ class _Reader:
         if text is not None and text.strip():
             self.pending.append((obj, feature, text, element.sourceline, attribute, many, names_of))
 
-    def ends_later(self, obj: EObject, el: etree._Element, ends: tuple, what: str) -> None:
+    def ends_later(
+        self, obj: EObject, el: etree._Element, ends: tuple, what: str, name: str | None = None
+    ) -> None:
         """Resolve later each of ``ends`` (``(attribute, slot)`` pairs of single-valued
-        references), which ``el`` must have (a connection's, a connection reference's)."""
+        references), which ``el`` must have (a connection's, a connection reference's).
+        ``what`` and ``name`` say what ``el`` is, in the error when one is missing."""
         line = el.sourceline
         append = self.pending.append
         for attribute, slot in ends:
             text = el.get(attribute)
             if text is None:
-                raise self.error(f"{what} has no {attribute}", el)
+                named = what if name is None else f"{what} {name!r}"
+                raise self.error(f"{named} has no {attribute}", el)
             if text.strip():
                 append((obj, slot, text, line, attribute, False, None))
 
@@ -756,7 +760,7 @@ class _Reader:
             set_value(obj, f["ConnectionInstance.complete"], True)
         if el.get("bidirectional") == "true":
             set_value(obj, f["ConnectionInstance.bidirectional"], True)
-        self.ends_later(obj, el, self.s_connection_ends, f"connection instance {name!r}")
+        self.ends_later(obj, el, self.s_connection_ends, "connection instance", name)
         if el.get("inSystemOperationMode") is not None:
             self.ref_later(
                 obj,
@@ -1845,7 +1849,7 @@ def _load(data: bytes, filename: str, *, strict: bool, with_ids: bool) -> Import
             )
         reader.resolve_pending()
         choice = reader.decode_literals()
-    model_name = Path(filename).name.rsplit(".", 1)[0] if not filename.startswith("<") else "aaxl2"
+    model_name = os.path.basename(filename).rsplit(".", 1)[0] if not filename.startswith("<") else "aaxl2"
     reader.fast.set_value(aadl_model, reader.f["AadlModel.name"], model_name)
     result = ImportResult(
         model=aadl_model,
