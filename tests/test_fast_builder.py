@@ -347,3 +347,23 @@ def test_pyecore_s_changes_before_any_read_of_its_state_leave_the_state_pyecore_
     b.add(fi, "featureInstances", b.make("FeatureInstance", name="r"))
     assert fi.eIsSet("featureInstances") and fi.featureInstances[0].eContainer() is fi
     assert (fi, fi.eClass.findEStructuralFeature("featureInstances")) in fi.featureInstances[0]._inverse_rels
+
+
+def test_a_prepared_class_makes_with_object_new_what_fast_new_makes() -> None:
+    from pyecore.ecore import EPackage
+
+    from rosaadl import metamodels
+    from rosaadl.bulk import FastFactory
+
+    cls = metamodels.load().eclass("ModeInstance").python_class
+    FastFactory.prepare(cls)
+    FastFactory.prepare(cls)  # once is enough; again changes nothing
+    made, fast = object.__new__(cls), FastFactory.new(cls)
+    for obj in (made, fast):
+        assert obj.eContainer() is None and obj.eResource is None and obj.dyn_inst is obj
+        assert not obj._isset and not obj._inverse_rels and obj.listeners == []
+        assert obj.name is None and not obj.eIsSet("name")
+        obj.name = "m"
+        assert obj.eIsSet("name") and [f.name for f in obj._isset] == ["name"]
+    with pytest.raises(TypeError, match="not a class made from an EClass"):
+        FastFactory.prepare(EPackage)
