@@ -251,9 +251,9 @@ class FastFactory:
     is skipped is what a new, unobserved object does not need: notifications (no listener can
     be attached yet), feature lookups by name (done once, in :class:`FeatureSlot`), the type
     check of each value (the caller passes values of the right type), and the entry in
-    pyecore's debugging registry of all objects (see :meth:`new`). The garbage collector is best paused
-    while many objects are made (every pyecore object is part of a reference cycle): see
-    :func:`gc_paused`.
+    pyecore's debugging registry of all objects (see :meth:`new`). The garbage collector is
+    best paused while many objects are made (every pyecore object is part of a reference
+    cycle): see :func:`gc_paused`.
     """
 
     __slots__ = ("_slots",)
