@@ -196,7 +196,7 @@ def _value_holder(feature) -> type:
 def _ordered_set_holder(feature) -> type:
     """pyecore's ordered set (``EOrderedSet``) for the values of one many-valued feature: each
     stores only its owner and its items (``items`` and ``map``, as ``OrderedSet`` keeps them)."""
-    return _holder_class(EOrderedSet, feature, _orderedset_update=False)
+    return _holder_class(EOrderedSet, feature, _orderedset_update=False, _items_field=True)
 
 
 @cache
@@ -401,6 +401,8 @@ class FastFactory:
     @staticmethod
     def items(collection) -> Any:
         """The stored items of a pyecore collection, indexable without pyecore's overhead."""
+        if getattr(collection, "_items_field", False):  # ours: no abstract-class check needed
+            return collection.items
         if isinstance(collection, EOrderedSet) and _ORDERED_SET_FIELDS:
             return collection.items
         return collection
