@@ -42,7 +42,7 @@ from __future__ import annotations
 import logging
 import os
 from dataclasses import dataclass, field
-from functools import cache
+from functools import cache, cached_property
 from pathlib import Path
 from typing import Any
 
@@ -97,7 +97,8 @@ class ImportResult:
     refers to none); ``property_set_eras`` names the sets decoded with another era's table
     (see :class:`osate_eras.EraChoice`); ``warnings`` also holds ``info`` diagnostics;
     ``sidecars`` maps each declarative ``.aadl`` URI the file refers to
-    (other than predeclared sets) to its resolved path and whether that file is present.
+    (other than predeclared sets) to its resolved path and whether that file is present
+    (looked up on first use: an import itself touches no file).
     """
 
     model: EObject
@@ -106,7 +107,20 @@ class ImportResult:
     era: str | None = None
     property_set_eras: dict[str, str] = field(default_factory=dict)
     warnings: list[Diagnostic] = field(default_factory=list)
-    sidecars: dict[str, tuple[str, bool]] = field(default_factory=dict)
+    # the declarative URIs, and the directory relative ones resolve against (None: kept as URIs)
+    sidecar_uris: tuple[str, ...] = ()
+    base_dir: str | None = None
+
+    @cached_property
+    def sidecars(self) -> dict[str, tuple[str, bool]]:
+        out = {}
+        for uri in self.sidecar_uris:
+            if self.base_dir is None or ":" in uri.split("/")[0]:
+                out[uri] = (uri, False)
+                continue
+            resolved = os.path.normpath(os.path.join(self.base_dir, uri))
+            out[uri] = (resolved, os.path.isfile(resolved))
+        return out
 
     @property
     def instances(self) -> list[EObject]:
@@ -381,6 +395,7 @@ class _Reader:
         # (uri, fragment, role, property, field href) → [(object, feature name)]
         self.literal_uses: dict[tuple, list[tuple[EObject, str]]] = {}
         self.href_cache: dict[str, tuple[str, str]] = {}
+        self.link_names: dict[str, str] = {}
         # a unit's (href, property, field href) → (the unit kept until decoded, its literal_uses list)
         self.unit_uses: dict[tuple, tuple[str, list]] = {}
         self.xsi_cache: dict[tuple[str, str], tuple[str, str]] = {}
@@ -507,7 +522,7 @@ class _Reader:
 
     def link_checked(self, element: etree._Element) -> None:
         """A link element whose target the instance object already names (a subcomponent's, a
-        feature's): only its href's presence and file are noted (see :meth:`sidecars`)."""
+        feature's): only its href's presence and file are noted (see :attr:`ImportResult.sidecars`)."""
         text = element.get("href")
         if text is None:
             raise self.error(f"<{element.tag}> has no href", element)
@@ -536,7 +551,12 @@ class _Reader:
         )
 
     def link_name(self, element: etree._Element) -> str:
-        return _name_of(*self.href(element))
+        """The name a link element's ``href`` is kept as (see :func:`_name_of`), one string per href."""
+        text = element.get("href")
+        name = self.link_names.get(text)
+        if name is None:
+            name = self.link_names[text] = _name_of(*self.href(element))
+        return name
 
     def link(self, el: etree._Element, tag: str, owner: str) -> tuple[str, str] | None:
         """(uri, fragment) of the link ``tag`` of ``el``: a child element, or else the attribute
@@ -1343,16 +1363,6 @@ class _Reader:
             )
         return choice
 
-    def sidecars(self) -> dict[str, tuple[str, bool]]:
-        out = {}
-        for uri in sorted(self.declarative_uris):
-            if self.base_dir is None or ":" in uri.split("/")[0]:
-                out[uri] = (uri, False)
-                continue
-            resolved = os.path.normpath(os.path.join(self.base_dir, uri))
-            out[uri] = (resolved, os.path.isfile(resolved))
-        return out
-
 
 _VALUE_HANDLERS = {
     (NS_AADL2, "IntegerLiteral"): _Reader._integer,
@@ -1858,7 +1868,8 @@ def _load(data: bytes, filename: str, *, strict: bool, with_ids: bool) -> Import
         era=choice.era,
         property_set_eras=dict(choice.set_eras),
         warnings=reader.warnings,
-        sidecars=reader.sidecars(),
+        sidecar_uris=tuple(sorted(reader.declarative_uris)),
+        base_dir=reader.base_dir,
     )
     log.debug("read %s: %s, era %s, %d warning(s)", filename, kind, choice.era, len(reader.warnings))
     # the document goes last: see _Reader.release

@@ -693,6 +693,15 @@ def test_names_with_path_tricks_are_plain_names(tmp_path: Path) -> None:
     assert Path(resolved).is_absolute()  # reported, never read
 
 
+def test_sidecars_are_looked_up_when_asked_for_not_during_the_import(tmp_path: Path) -> None:
+    (tmp_path / "instances").mkdir()
+    result = loads_aaxl2(GOOD, str(tmp_path / "instances" / "x_Instance.aaxl2"))
+    (tmp_path / "m.aadl").write_text("package m\npublic\nend m;\n")
+    resolved, present = result.sidecars["../m.aadl"]
+    assert Path(resolved) == tmp_path / "m.aadl" and present
+    assert loads_aaxl2(GOOD, "<memory>").sidecars["../m.aadl"] == ("../m.aadl", False)
+
+
 @pytest.mark.corpus
 def test_mutated_corpus_files_fail_cleanly(corpus: Path) -> None:
     """Random damage to real files: every outcome is a model or a RosaadlError, never a crash."""
