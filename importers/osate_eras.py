@@ -676,6 +676,8 @@ class EraTable:
             raise KeyError(f"unknown OSATE era {era!r} (known: {', '.join(ERAS)})")
         self.era = era
         self._sets: dict[str, _SetFacts] = {}
+        # (set, path) -> what literal() decodes it to: the table is immutable, so each is made once
+        self._literals: dict[tuple[str, str], Literal | None] = {}
         for set_name, (plugin, key) in _ERA_SETS[era].items():
             self._sets[set_name.lower()] = _parse_block(set_name, plugin, _BLOCKS[key])
 
@@ -691,6 +693,12 @@ class EraTable:
 
     def literal(self, property_set: str, path: str) -> Literal | None:
         """Decode ``@…/@ownedLiteral.k`` or ``@…/@ownedField.k`` (era-neutral path); None if absent."""
+        key = (property_set, path)
+        if key not in self._literals:
+            self._literals[key] = self._decode_literal(property_set, path)
+        return self._literals[key]
+
+    def _decode_literal(self, property_set: str, path: str) -> Literal | None:
         facts = self._sets.get(property_set.lower())
         if facts is None:
             return None
