@@ -676,8 +676,6 @@ class EraTable:
             raise KeyError(f"unknown OSATE era {era!r} (known: {', '.join(ERAS)})")
         self.era = era
         self._sets: dict[str, _SetFacts] = {}
-        # (set, path) -> what literal() decodes it to: the table is immutable, so each is made once
-        self._literals: dict[tuple[str, str], Literal | None] = {}
         for set_name, (plugin, key) in _ERA_SETS[era].items():
             self._sets[set_name.lower()] = _parse_block(set_name, plugin, _BLOCKS[key])
 
@@ -693,10 +691,7 @@ class EraTable:
 
     def literal(self, property_set: str, path: str) -> Literal | None:
         """Decode ``@…/@ownedLiteral.k`` or ``@…/@ownedField.k`` (era-neutral path); None if absent."""
-        key = (property_set, path)
-        if key not in self._literals:
-            self._literals[key] = self._decode_literal(property_set, path)
-        return self._literals[key]
+        return _decoded_literal(self.era, property_set, path)
 
     def _decode_literal(self, property_set: str, path: str) -> Literal | None:
         facts = self._sets.get(property_set.lower())
@@ -762,6 +757,12 @@ class EraTable:
         if facts is None:
             return None
         return facts.property_units.get(local.lower())
+
+
+@lru_cache(maxsize=4096)
+def _decoded_literal(era: str, property_set: str, path: str) -> Literal | None:
+    """:meth:`EraTable.literal`, decoded once per (era, set, path): the tables are immutable."""
+    return table(era)._decode_literal(property_set, path)
 
 
 @cache
