@@ -325,21 +325,14 @@ class FastFactory:
     @staticmethod
     def set_child(obj: EObject, slot: FeatureSlot, child: EObject) -> None:
         """Set a single-valued containment reference."""
-        feature = slot.feature
         ev = _object_new(slot.holder)
         ev.owner = obj
         ev._value = child
         d = obj.__dict__
         d[slot.name] = ev
         if "_isset" in d:
-            d["_isset"][feature] = None
-        couple = (obj, feature)
-        cd = child.__dict__
-        cd["_container"] = obj
-        cd["_containment_feature"] = feature
-        cd["_built_containment"] = couple
-        if "_inverse_rels" in cd:  # already read (the child was referred to): keep it whole
-            cd["_inverse_rels"].add(couple)
+            d["_isset"][slot.feature] = None
+        FastFactory._refer(obj, slot, (child,))
 
     @staticmethod
     def set_many(obj: EObject, slot: FeatureSlot, values: list) -> None:
@@ -391,8 +384,8 @@ class FastFactory:
                 cd = child.__dict__
                 cd["_container"] = obj
                 cd["_containment_feature"] = feature
-                cd["_built_containment"] = couple
-                if "_inverse_rels" in cd:  # already read (the child was referred to)
+                cd["_built_containment"] = couple  # see _InverseOnRead
+                if "_inverse_rels" in cd:  # already read (the child was referred to): keep it whole
                     cd["_inverse_rels"].add(couple)
         else:
             for target in values:
