@@ -76,6 +76,7 @@ _XSI_TYPE = f"{{{NS_XSI}}}type"
 # the same key as bytes: lxml reads an attribute by it without encoding the key each time
 _XSI_TYPE_KEY = _XSI_TYPE.encode()
 _XMI_ID = f"{{{NS_XMI}}}id"
+_XMI_ID_KEY = _XMI_ID.encode()
 _ROOT_SYSTEM = f"{{{NS_INSTANCE}}}SystemInstance"
 _ROOT_COMPONENT = f"{{{NS_INSTANCE}}}ComponentInstance"
 _ROOT_XMI = f"{{{NS_XMI}}}XMI"
@@ -599,10 +600,10 @@ class _Reader:
                 append((obj, slot, text, line, attribute, False, None))
 
     def register_id(self, obj: EObject, element: etree._Element) -> None:
-        if self.has_ids:
-            xid = element.get(_XMI_ID)
-            if xid is not None:
-                self.ids[xid] = obj
+        """Index ``obj`` by its element's ``xmi:id`` (callers check :attr:`has_ids` first)."""
+        xid = element.get(_XMI_ID_KEY)
+        if xid is not None:
+            self.ids[xid] = obj
 
     # ------------------------------------------------------------------ instance files
 
@@ -824,7 +825,8 @@ class _Reader:
     def flow_specification(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = self.new(self.cls["FlowSpecificationInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["FlowSpecificationInstance.name"], name)
         has_source, has_destination = el.get("source") is not None, el.get("destination") is not None
@@ -838,7 +840,8 @@ class _Reader:
     def end_to_end_flow(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = self.new(self.cls["EndToEndFlowInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["EndToEndFlowInstance.name"], name)
         fast.set_value(obj, f["EndToEndFlowInstance.flow"], name)
@@ -849,7 +852,8 @@ class _Reader:
     def mode_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = self.new(self.cls["ModeInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         name = el.get("name") or ""
         fast.set_value(obj, f["ModeInstance.name"], name)
         fast.set_value(obj, f["ModeInstance.mode"], name)
@@ -861,7 +865,8 @@ class _Reader:
     def mode_transition(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = self.new(self.cls["ModeTransitionInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         fast.set_value(obj, f["ModeTransitionInstance.name"], el.get("name") or "")
         self.ref_later(obj, f["ModeTransitionInstance.source"], el, "source")
         self.ref_later(obj, f["ModeTransitionInstance.destination"], el, "destination")
@@ -872,7 +877,8 @@ class _Reader:
     def system_operation_mode(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = self.new(self.cls["SystemOperationMode"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         fast.set_value(obj, f["SystemOperationMode.name"], el.get("name") or "")
         self.ref_later(obj, f["SystemOperationMode.currentModes"], el, "currentMode", many=True)
         for child in el:
@@ -882,7 +888,8 @@ class _Reader:
     def annex_instance(self, el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
         obj = self.new(self.cls["AnnexInstance"])
-        self.register_id(obj, el)
+        if self.has_ids:
+            self.register_id(obj, el)
         fast.set_value(obj, f["AnnexInstance.name"], el.get("name") or "")
         # the file's indentation is not kept (see _load): the text is indented on its own
         text = etree.tostring(el, encoding="unicode", with_tail=False, pretty_print=True).rstrip("\n")
@@ -1211,6 +1218,7 @@ class _Reader:
     def resolve_pending(self) -> None:
         set_many, set_value = FastFactory.set_many, FastFactory.set_value
         cache: dict[str, EObject] = {}
+        lists: dict[tuple, list] = {}
         resolve = self.resolve
         # a pending reference keeps its element's line, not the element: holding tens of
         # thousands of lxml element proxies costs more to free than the references to resolve
@@ -1223,21 +1231,27 @@ class _Reader:
                 expected = slot.target if names_of is None else self.cls[names_of]
                 if not isinstance(target, expected):
                     raise self._wrong_target(attribute, target, expected, line, text)
-                set_value(obj, slot, target if names_of is None else (target.name or ""))
+                set_value(obj, slot, target if names_of is None else _name_held(target))
                 continue
-            targets = []
-            for token in text.split():
-                target = cache.get(token)
-                if target is None:
-                    target = cache[token] = resolve(token, line, attribute, text)
-                targets.append(target)
+            # the same list is often written again and again (the modes a connection or a
+            # value is in): each text is resolved and checked once per expected class
             expected = slot.target if names_of is None else self.cls[names_of]
-            for target in targets:
-                if not isinstance(target, expected):
-                    raise self._wrong_target(attribute, target, expected, line, text)
-            if names_of is not None:
-                targets = [target.name or "" for target in targets]
-            set_many(obj, slot, targets)
+            key = (text, expected, names_of is None)
+            checked = lists.get(key)
+            if checked is None:
+                targets = []
+                for token in text.split():
+                    target = cache.get(token)
+                    if target is None:
+                        target = cache[token] = resolve(token, line, attribute, text)
+                    targets.append(target)
+                for target in targets:
+                    if not isinstance(target, expected):
+                        raise self._wrong_target(attribute, target, expected, line, text)
+                if names_of is not None:
+                    targets = [_name_held(target) for target in targets]
+                checked = lists[key] = targets
+            set_many(obj, slot, checked[:])  # set_many keeps the list it is given
 
     def _wrong_target(
         self, attribute: str, target: EObject, expected: type, line: int | None, text: str
@@ -1816,6 +1830,12 @@ def loads_aaxl2(
         return _load(data, filename, strict=strict, with_ids=False)
     except _IdsNeeded:
         return _load(data, filename, strict=strict, with_ids=True)
+
+
+def _name_held(obj: EObject) -> str:
+    """``obj.name or ""`` for an object the reader made, read from its value holder."""
+    holder = obj.__dict__.get("name")
+    return (holder._value if holder is not None else None) or ""
 
 
 class _IdsNeeded(Exception):
