@@ -108,7 +108,8 @@ class ImportResult:
     era: str | None = None
     property_set_eras: dict[str, str] = field(default_factory=dict)
     warnings: list[Diagnostic] = field(default_factory=list)
-    # the declarative URIs, and the directory relative ones resolve against (None: kept as URIs)
+    # the declarative URIs, and the directory relative ones resolve against (None: kept as URIs;
+    # not normalised, the paths in ``sidecars`` are)
     sidecar_uris: tuple[str, ...] = ()
     base_dir: str | None = None
 
@@ -257,6 +258,8 @@ class _MetamodelFacts:
     classes: dict[str, type]
     slots: dict[str, FeatureSlot]
     enum_literals: dict[tuple[str, str], Any]
+    # the attributes every _Reader starts with (read-only to it)
+    reader_constants: dict[str, Any]
 
 
 @cache
@@ -360,33 +363,58 @@ def _metamodel_facts() -> _MetamodelFacts:
             for text in (literal.name, literal.literal):
                 if text:
                     literals[(enum.name, text)] = literal
-    return _MetamodelFacts(eclasses, enums, classes, f, literals)
+    constants = {
+        "fast": factory,
+        # the classes are prepared (above): FastFactory.new without its check
+        "new": object.__new__,
+        "ec": eclasses,
+        "enums": enums,
+        "cls": classes,
+        "f": f,
+        "c_pa": classes["PropertyAssociation"],
+        "c_modal": classes["ModalPropertyValue"],
+        "c_int": classes["IntegerValue"],
+        "c_real": classes["RealValue"],
+        "s_pa_property": f["PropertyAssociation.property"],
+        "s_pa_values": f["PropertyAssociation.ownedValues"],
+        "s_modal_value": f["ModalPropertyValue.value"],
+        "s_int_value": f["IntegerValue.value"],
+        "s_int_unit": f["IntegerValue.unit"],
+        "s_real_value": f["RealValue.value"],
+        "s_real_unit": f["RealValue.unit"],
+        "s_named_name": f["NamedValue.name"],
+        "s_reference_ends": tuple(
+            (end, f[f"ConnectionReference.{end}"]) for end in ("context", "source", "destination")
+        ),
+        "s_connection_ends": tuple(
+            (end, f[f"ConnectionInstance.{end}"]) for end in ("source", "destination")
+        ),
+    }
+    return _MetamodelFacts(eclasses, enums, classes, f, literals, constants)
+
+
+def _directory_of(filename: str) -> str | None:
+    """The directory a file's relative sidecar URIs resolve against (None for ``<...>`` names)."""
+    if not filename or filename.startswith("<"):
+        return None
+    directory = os.path.dirname(filename)
+    return directory if os.path.isabs(filename) else os.path.join(os.getcwd(), directory)
 
 
 class _Reader:
     """One read of one file (no state survives it)."""
 
     def __init__(self, filename: str, tree: etree._ElementTree, *, strict: bool) -> None:
+        meta = _metamodel_facts()
+        # what is the same for every read (metamodel classes, feature slots), in one step
+        self.__dict__.update(meta.reader_constants)
         self.filename = filename
         self.tree = tree
         self.strict = strict
-        self.base_dir = (
-            os.path.dirname(os.path.abspath(filename)) if filename and not filename.startswith("<") else None
-        )
+        # sidecar paths are normalised when they are looked up (ImportResult.sidecars)
+        self.base_dir = _directory_of(filename)
         self.warnings: list[Diagnostic] = []
-        self.fast = FastFactory()
-        meta = _metamodel_facts()
-        # the classes are prepared (see _metamodel_facts): FastFactory.new without its check
-        self.new = object.__new__
-        self.ec, self.enums, self.cls, self.f = meta.eclasses, meta.enums, meta.classes, meta.slots
         self.enum_cache: dict[tuple[str, str], Any] = dict(meta.enum_literals)
-        self.c_pa = self.cls["PropertyAssociation"]
-        self.c_modal = self.cls["ModalPropertyValue"]
-        self.s_pa_property = self.f["PropertyAssociation.property"]
-        self.c_int, self.c_real = self.cls["IntegerValue"], self.cls["RealValue"]
-        self.s_modal_value = self.f["ModalPropertyValue.value"]
-        self.s_int_value, self.s_int_unit = self.f["IntegerValue.value"], self.f["IntegerValue.unit"]
-        self.s_real_value, self.s_real_unit = self.f["RealValue.value"], self.f["RealValue.unit"]
         self.ids: dict[str, EObject] = {}
         self.roots: list[EObject] = []
         # reference attributes to resolve once every object exists:
@@ -403,7 +431,8 @@ class _Reader:
         self.unknown_tags: dict[tuple[str, str], int] = {}
         self.declarative_uris: set[str] = set()
         self.seen_uris: set[str] = set()
-        self.nsmap: dict[str | None, str] = {}
+        # the root's namespace prefixes (lxml makes a new dict at each read of nsmap)
+        self.nsmap: dict[str | None, str] = tree.getroot().nsmap
         self.has_ids = True
         self.nsmap_is_global = True
         self.property_cache: dict[str, tuple[str, bool]] = {}
@@ -414,14 +443,6 @@ class _Reader:
         self.field_names: dict[tuple[str, str], tuple[str, bool]] = {}
         # a named value's (uri, fragment) → (its name, whether it is positional)
         self.named_values: dict[tuple[str, str], tuple[str, bool]] = {}
-        self.s_named_name = self.f["NamedValue.name"]
-        self.s_pa_values = self.f["PropertyAssociation.ownedValues"]
-        self.s_reference_ends = tuple(
-            (end, self.f[f"ConnectionReference.{end}"]) for end in ("context", "source", "destination")
-        )
-        self.s_connection_ends = tuple(
-            (end, self.f[f"ConnectionInstance.{end}"]) for end in ("source", "destination")
-        )
 
     def release(self) -> None:
         """Free the reader's tables before the parsed document (which goes with the caller's
@@ -609,7 +630,6 @@ class _Reader:
 
     def read_instance_roots(self, root_el: etree._Element) -> EObject:
         f, fast = self.f, self.fast
-        self.nsmap = dict(root_el.nsmap)
         if root_el.tag == _ROOT_XMI:
             root_elements = [child for child in root_el if isinstance(child.tag, str)]
             if not root_elements:
@@ -1435,7 +1455,6 @@ class _DeclarativeReader:
         self.root = root_el
         self.unit_name = root_el.get("name") or ""
         self.by_id = {el.get(_XMI_ID): el for el in root_el.iter() if el.get(_XMI_ID) is not None}
-        reader.nsmap = dict(root_el.nsmap)
 
     def read(self) -> tuple[EObject, str]:
         if self.root.tag == _ROOT_PACKAGE:
@@ -1843,13 +1862,16 @@ class _IdsNeeded(Exception):
 
 
 def _carries_id(root_el: etree._Element) -> bool:
-    element: etree._Element | None = root_el
+    element = root_el
     for _depth in range(3):
-        if element is None:
-            return False
-        if element.get(_XMI_ID) is not None:
+        if element.get(_XMI_ID_KEY) is not None:
             return True
-        element = next((child for child in element if isinstance(child.tag, str)), None)
+        for child in element:
+            if isinstance(child.tag, str):
+                element = child
+                break
+        else:
+            return False
     return False
 
 
@@ -1864,7 +1886,7 @@ def _load(data: bytes, filename: str, *, strict: bool, with_ids: bool) -> Import
         # EMF writes an xmi:id on every object of a resource that uses them, so the root and its
         # first child tell; a file that refers to an id only deeper down is read again with ids
         reader.has_ids = with_ids or _carries_id(root_el)
-        reader.nsmap_is_global = data.count(b"xmlns") <= len(root_el.nsmap)
+        reader.nsmap_is_global = data.count(b"xmlns") <= len(reader.nsmap)
         tag = root_el.tag
         if tag in (_ROOT_SYSTEM, _ROOT_XMI):
             aadl_model = reader.read_instance_roots(root_el)
