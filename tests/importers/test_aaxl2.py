@@ -295,6 +295,15 @@ def test_modes_feature_groups_bidirectional_and_annexes(corpus: Path) -> None:
     som = modes.systemOperationModes[0]
     assert [m.name for m in som.currentModes] == ["S123", "Powered", "Powered", "Powered"]
     assert len(modes.connectionInstances[0].inSystemOperationModes) == 8
+    # a list of references written again is resolved once, but each object gets its own list
+    connections = list(modes.connectionInstances)
+    first = list(connections[0].inSystemOperationModes)
+    same = [c for c in connections if list(c.inSystemOperationModes) == first]
+    assert len(same) > 1
+    same[0].inSystemOperationModes.append("elsewhere")
+    assert list(same[1].inSystemOperationModes) == first
+    for each in modes.systemOperationModes:  # every object refers on its own (delete() follows these)
+        assert all((each, type(each).currentModes) in mode._inverse_rels for mode in each.currentModes)
 
     groups = _read(corpus, "osate2-issue2780-featuregroups").root
     fl = groups.componentInstances[0].featureInstances[0]
