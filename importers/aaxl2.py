@@ -1244,6 +1244,8 @@ class _Reader:
         # thousands of lxml element proxies costs more to free than the references to resolve
         for obj, slot, text, line, attribute, many, names_of in self.pending:
             if not many:
+                # most references (a connection's ends) take this path: one token, looked up in
+                # `cache` alone (going through `lists` as well costs 1-3 ms on 50 000 objects)
                 token = text.strip()
                 target = cache.get(token)
                 if target is None:
