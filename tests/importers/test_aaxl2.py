@@ -789,14 +789,35 @@ def test_fast_objects_behave_like_pyecore_objects(tmp_path: Path) -> None:
     assert model.model_differences(result.model, again) == []
 
 
-def test_generated_benchmark_file_imports_with_the_expected_count(tmp_path: Path) -> None:
+def _bench_module():
     import importlib.util
 
     source = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_aaxl2.py"
     spec = importlib.util.spec_from_file_location("bench_aaxl2_under_test", source)
     bench = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(bench)
-    generate_instance = bench.generate_instance
+    return bench
+
+
+def test_benchmark_gives_ours_as_many_calls_as_the_floor_in_each_round() -> None:
+    # the bests are minima: a side given more calls would have more draws at a low time
+    calls = {"floor": 0, "ours": 0}
+
+    def floor() -> None:
+        calls["floor"] += 1
+        sum(range(200))
+
+    def ours() -> None:
+        calls["ours"] += 1
+        sum(range(2000))
+
+    best = _bench_module()._best_pair(floor, ours, repeat=5, min_seconds=0.002)
+    assert calls["floor"] >= 4 * 5 and calls["ours"] == calls["floor"]
+    assert 0 < best["floor"] < best["ours"]
+
+
+def test_generated_benchmark_file_imports_with_the_expected_count(tmp_path: Path) -> None:
+    generate_instance = _bench_module().generate_instance
 
     path = tmp_path / "gen_Instance.aaxl2"
     expected = generate_instance(path, objects=3000)
