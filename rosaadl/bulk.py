@@ -24,7 +24,10 @@ from pyecore.ordered_set_patch import ordered_set
 from pyecore.valuecontainer import EBag, EList, EOrderedSet, ESet, EValue
 
 from rosaadl import metamodels
+from rosaadl.compiled import check_built_from_source
 from rosaadl.errors import ModelError
+
+check_built_from_source(__name__, __file__)  # when compiled (see rosaadl.compiled)
 
 __all__ = ["FeatureSlot", "FastFactory", "FastBuilder", "gc_paused"]
 
