@@ -8,8 +8,7 @@ DEMO_OUT ?= demo-out
 
 .PHONY: demo test bench lint venv clean
 
-# setup.py compiles these two (see rosaadl/compiled.py): a change to one is built again
-$(STAMP): pyproject.toml setup.py importers/aaxl2.py rosaadl/bulk.py
+$(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
@@ -31,5 +30,4 @@ lint: $(STAMP)
 	$(BIN)/ruff format --check --diff . || true
 
 clean:
-	rm -rf $(VENV) $(DEMO_OUT) build *.egg-info rosaadl/_compiled_sources.py
-	rm -f importers/aaxl2.*.so rosaadl/bulk.*.so
+	rm -rf $(VENV) $(DEMO_OUT) build *.egg-info

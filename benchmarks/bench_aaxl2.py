@@ -397,11 +397,6 @@ def main(argv: list[str]) -> int:
             print(f"generated file: {generated_row['objects']} objects, expected {expected}", file=sys.stderr)
         rows.append((f"generated ({generated.stat().st_size // 1024} KiB)", generated_row))
 
-    from rosaadl import bulk
-    from rosaadl.importers import aaxl2
-
-    compiled = [m.__name__ for m in (aaxl2, bulk) if not m.__file__.endswith(".py")]
-    print(f"ours runs {'compiled: ' + ', '.join(compiled) if compiled else 'the Python source'}")
     print(
         f"{'file':38s} {'objects':>8s} {'floor ms':>9s} {'ours ms':>8s} {'/floor':>7s} "
         f"{'pyecore ms':>11s} {'pyecore/ours':>13s}"

@@ -51,12 +51,9 @@ from pyecore.ecore import EClass, EEnum, EObject
 
 from rosaadl import metamodels, model
 from rosaadl.bulk import FastFactory, FeatureSlot, gc_paused
-from rosaadl.compiled import check_built_from_source
 from rosaadl.errors import Diagnostic, ImportFormatError, Location, RosaadlError
 from rosaadl.fileio import parse_xml_bytes
 from rosaadl.importers import osate_eras
-
-check_built_from_source(__name__, __file__)  # when compiled (see rosaadl.compiled)
 
 __all__ = [
     "ImportResult",

@@ -13,6 +13,7 @@ body. :func:`gc_paused` keeps the cyclic garbage collector out of the way while 
 from __future__ import annotations
 
 import gc
+import importlib.metadata
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from functools import cache
@@ -24,12 +25,26 @@ from pyecore.ordered_set_patch import ordered_set
 from pyecore.valuecontainer import EBag, EList, EOrderedSet, ESet, EValue
 
 from rosaadl import metamodels
-from rosaadl.compiled import check_built_from_source
 from rosaadl.errors import ModelError
 
-check_built_from_source(__name__, __file__)  # when compiled (see rosaadl.compiled)
+__all__ = ["FeatureSlot", "FastFactory", "FastBuilder", "gc_paused", "check_pyecore_version"]
 
-__all__ = ["FeatureSlot", "FastFactory", "FastBuilder", "gc_paused"]
+#: The pyecore releases whose internals this module was tested against (``pyproject.toml`` pins the same).
+TESTED_PYECORE = "0.15"
+
+
+def check_pyecore_version(version: str) -> None:
+    """Refuse a pyecore other than the tested minor version: this module fills pyecore's own
+    object state (value holders, containers), which another release may lay out differently."""
+    if version.split(".")[:2] != TESTED_PYECORE.split("."):
+        raise ImportError(
+            f"rosaadl needs pyecore {TESTED_PYECORE}.x (it builds pyecore objects directly), "
+            f"but pyecore {version} is installed: pip install 'pyecore=={TESTED_PYECORE}.*'",
+            name=__name__,
+        )
+
+
+check_pyecore_version(importlib.metadata.version("pyecore"))
 
 OrderedSet = ordered_set.OrderedSet
 

@@ -367,3 +367,15 @@ def test_a_prepared_class_makes_with_object_new_what_fast_new_makes() -> None:
         assert obj.eIsSet("name") and [f.name for f in obj._isset] == ["name"]
     with pytest.raises(TypeError, match="not a class made from an EClass"):
         FastFactory.prepare(EPackage)
+
+
+def test_bulk_refuses_a_pyecore_release_it_was_not_tested_with() -> None:
+    import importlib.metadata
+
+    from rosaadl.bulk import check_pyecore_version
+
+    check_pyecore_version(importlib.metadata.version("pyecore"))  # the installed one passes
+    check_pyecore_version("0.15.9")
+    for other in ("0.16.0", "0.14.3", "1.0"):
+        with pytest.raises(ImportError, match=rf"needs pyecore 0\.15\.x .* but pyecore {other} is installed"):
+            check_pyecore_version(other)
