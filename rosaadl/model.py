@@ -7,8 +7,10 @@ Code outside ``metamodels/`` uses these helpers instead of pyecore's reflective 
 * :func:`children`, :func:`parent`, :func:`walk` navigate containment;
 * :func:`qualified_name` / :func:`find_unit` / :func:`find_classifier` work with AADL names
   (``Pkg::Type.impl``, case-insensitive as in AADL);
+* :func:`is_a` tests an object against metamodel classes by name (answered once per class);
 * :func:`instance_path` / :func:`find_instance` convert between instance objects and their
-  dotted paths (``top.sw.cam.publisher``, array elements as ``cam[2]``);
+  dotted paths (``top.sw.cam.publisher``, array elements as ``cam[2]``, one segment:
+  :func:`instance_segment`); :func:`component_instances` walks a component instance tree;
 * :func:`save` / :func:`load` persist any of our models as XMI (``.xmi``) or JSON (``.json``).
 """
 
@@ -47,6 +49,8 @@ __all__ = [
     "find_unit",
     "find_classifier",
     "instance_path",
+    "instance_segment",
+    "component_instances",
     "find_instance",
     "instance_children",
     "save",
@@ -110,9 +114,40 @@ def new(eclass: str | EClass, /, **values: Any) -> EObject:
     return obj
 
 
-def is_a(obj: object, eclass: str | EClass) -> bool:
-    """``isinstance`` against a metamodel class given by name."""
-    return isinstance(obj, EObject) and isinstance(obj, eclass_of(eclass).python_class)
+def is_a(obj: object, *eclasses: str | EClass) -> bool:
+    """Is ``obj`` an instance of one of the metamodel classes ``eclasses``?
+
+    A class is given as an EClass, by name (``"ComponentInstance"``: a class of that name in any
+    of our metamodels, or one of its superclasses) or qualified by its package
+    (``"rosmod.ComponentInstance"``). The answer for each object class is computed once.
+    """
+    if not isinstance(obj, EObject):
+        return False
+    return _class_is(obj.eClass, eclasses)
+
+
+@functools.lru_cache(maxsize=4096)
+def _class_is(eclass: EClass, wanted: tuple[str | EClass, ...]) -> bool:
+    """The answer of :func:`is_a` for one metaclass (immutable metadata, so cached)."""
+    kinds = (eclass, *eclass.eAllSuperTypes())
+    for item in wanted:
+        if isinstance(item, EClass):
+            if item in kinds:
+                return True
+            continue
+        package, _, name = item.rpartition(".")
+        if name not in _class_names():
+            raise ModelError(f"no metamodel class {item!r}")
+        if any(k.name == name and (not package or k.ePackage.name == package) for k in kinds):
+            return True
+    return False
+
+
+@functools.cache
+def _class_names() -> frozenset[str]:
+    """The names of every class of our metamodels (to reject a misspelt name in :func:`is_a`)."""
+    packages = metamodels.load().packages()
+    return frozenset(c.name for p in packages for c in p.eClassifiers if isinstance(c, EClass))
 
 
 # --------------------------------------------------------------------------- navigation
@@ -220,7 +255,9 @@ def _ancestors(obj: EObject) -> Iterator[EObject]:
 # --------------------------------------------------------------------------- instance paths
 
 
-def _segment(obj: EObject) -> str:
+def instance_segment(obj: EObject) -> str:
+    """An instance object's own segment of its path: its name, with its array index as
+    ``cam[2]`` (index 0 or none: the name alone; a multi-dimensional index: ``m[1][2]``)."""
     name = obj.name or ""
     index = getattr(obj, "index", None)
     if index is None:
@@ -247,12 +284,24 @@ def instance_children(obj: EObject) -> list[EObject]:
     return out
 
 
+def component_instances(root: EObject, *, include_root: bool = True) -> list[EObject]:
+    """``root`` (unless ``include_root`` is false) and every component instance below it,
+    depth first, in model order."""
+    out: list[EObject] = []
+    stack = [root] if include_root else list(reversed(root.componentInstances))
+    while stack:
+        current = stack.pop()
+        out.append(current)
+        stack.extend(reversed(current.componentInstances))
+    return out
+
+
 def instance_path(obj: EObject) -> str:
     """``top.sw.cam.publisher`` for an instance object (root name first)."""
     parts = []
     current = obj
     while current is not None and is_a(current, "InstanceObject"):
-        parts.append(_segment(current))
+        parts.append(instance_segment(current))
         current = current.eContainer()
     return ".".join(reversed(parts))
 
@@ -265,7 +314,7 @@ def find_instance(root: EObject, path: str) -> EObject:
     """
     text = path.strip()
     lowered = text.lower()
-    root_seg = _segment(root).lower()
+    root_seg = instance_segment(root).lower()
     if lowered == root_seg:
         return root
     if lowered.startswith(root_seg + "."):
@@ -275,7 +324,7 @@ def find_instance(root: EObject, path: str) -> EObject:
     while remaining:
         best = None
         for child in instance_children(current):
-            seg = _segment(child)
+            seg = instance_segment(child)
             low = seg.lower()
             rem_low = remaining.lower()
             if (rem_low == low or rem_low.startswith(low + ".")) and (
@@ -636,4 +685,3 @@ def model_differences(a: EObject, b: EObject, *, ignore: Iterable[str] = ("line"
 
 def model_equal(a: EObject, b: EObject) -> bool:
     return not model_differences(a, b)
-

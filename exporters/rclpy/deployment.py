@@ -29,9 +29,10 @@ from dataclasses import dataclass, field
 
 from pyecore.ecore import EObject
 
+from rosaadl import model
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import naming
-from rosaadl.exporters.rclpy.instances import enum_name, instance_path, is_kind, key, prop
+from rosaadl.exporters.rclpy.instances import enum_name, key, prop
 from rosaadl.exporters.rclpy.nodes import NodeClass, ThreadPlan, seconds, threads_of
 from rosaadl.exporters.rclpy.topics import Group, normalize_ros_name
 from rosaadl.properties import Reference
@@ -129,14 +130,14 @@ def _leaf_processors(component: EObject) -> list[EObject]:
 def bound_processors(target: EObject, seen: set[int] | None = None) -> list[EObject]:
     """The innermost processors a binding target stands for."""
     seen = seen if seen is not None else set()
-    if id(target) in seen or not is_kind(target, "ComponentInstance"):
+    if id(target) in seen or not model.is_a(target, "ComponentInstance"):
         return []
     seen.add(id(target))
     category = enum_name(target.category)
     if category == "virtualProcessor":
         found: list[EObject] = []
         for item in _as_list(prop(target, "Actual_Processor_Binding")):
-            if is_kind(item, "ComponentInstance"):
+            if model.is_a(item, "ComponentInstance"):
                 found.extend(bound_processors(item, seen))
         return found
     if category in ("processor", "system", "abstract"):
@@ -153,7 +154,7 @@ def _as_list(value: object) -> list:
 def host_of(processor: EObject) -> EObject:
     """The host of a core (see the module docstring); the processor itself when it has none."""
     current = processor.eContainer()
-    while current is not None and is_kind(current, "ComponentInstance"):
+    while current is not None and model.is_a(current, "ComponentInstance"):
         category = enum_name(current.category)
         if category == "processor":
             return current
@@ -226,7 +227,7 @@ class Deployment:
         self._host_names = naming.NameTable()
 
     def _warn(self, message: str, obj: EObject | None = None) -> None:
-        path = instance_path(obj) if obj is not None else None
+        path = model.instance_path(obj) if obj is not None else None
         self.diagnostics.append(Diagnostic("warning", message, Location(path=path)))
         log.warning("%s%s", f"{path}: " if path else "", message)
 
@@ -253,7 +254,7 @@ class Deployment:
         namespace, node_name = names
         node = NodeInstance(
             process=process,
-            path=instance_path(process),
+            path=model.instance_path(process),
             key=key(process),
             cls=cls,
             node_name=node_name,
@@ -289,7 +290,7 @@ class Deployment:
                     processors.append(proc)
         if not processors:
             return
-        node.bound_to = [instance_path(p) for p in processors]
+        node.bound_to = [model.instance_path(p) for p in processors]
         hosts = []
         for proc in processors:
             host = host_of(proc)
@@ -298,7 +299,7 @@ class Deployment:
         if len(hosts) > 1:
             self._warn(
                 f"bound to processors of {len(hosts)} hosts "
-                f"({', '.join(instance_path(h) for h in hosts)}); it is launched on the first",
+                f"({', '.join(model.instance_path(h) for h in hosts)}); it is launched on the first",
                 process,
             )
         host = hosts[0]
@@ -310,7 +311,7 @@ class Deployment:
     def _host(self, host: EObject) -> HostPlan:
         plan = self._hosts.get(id(host))
         if plan is None:
-            path = instance_path(host)
+            path = model.instance_path(host)
             relative = path.split(".", 1)[1] if "." in path else path
             plan = HostPlan(
                 ident=self._host_names.unique(naming.module_name(relative, fallback="host")),

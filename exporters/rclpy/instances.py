@@ -1,10 +1,9 @@
 """Fast, read-only navigation of instance models for the generator.
 
 The generator walks large instances many times; these helpers follow the instance containment
-directly (``componentInstances``, ``featureInstances``, ``connectionInstances``) and cache
-class membership per metamodel class, instead of the model API's reflective walk.  They give
-the same answers as :func:`rosaadl.model.walk`, :func:`rosaadl.model.is_a` and
-:func:`rosaadl.model.instance_path` on instance objects.
+directly (``componentInstances``, ``featureInstances``, ``connectionInstances``) with the model
+API's walker (:func:`rosaadl.model.component_instances`) and class test
+(:func:`rosaadl.model.is_a`), and read property values from a per-object table.
 """
 
 from __future__ import annotations
@@ -16,30 +15,18 @@ from functools import cache
 
 from pyecore.ecore import EClass, EObject
 
+from rosaadl import model
 from rosaadl.properties import EnumLiteral, python_value
 
 __all__ = [
-    "is_kind",
     "enum_name",
-    "components",
     "connections",
-    "instance_path",
     "owner_component",
     "process_of",
     "prop",
     "key",
     "caching",
 ]
-
-
-@cache
-def _kinds(eclass: EClass) -> frozenset[str]:
-    return frozenset([eclass.name, *(c.name for c in eclass.eAllSuperTypes())])
-
-
-def is_kind(obj: object, name: str) -> bool:
-    """``obj`` is an instance of the metamodel class ``name`` (or of a subclass)."""
-    return isinstance(obj, EObject) and name in _kinds(obj.eClass)
 
 
 def enum_name(value: object) -> str:
@@ -49,45 +36,16 @@ def enum_name(value: object) -> str:
     return str(getattr(value, "name", value) or "")
 
 
-def components(root: EObject) -> Iterator[EObject]:
-    """``root`` and every component instance below it, depth first in declaration order."""
-    stack = [root]
-    while stack:
-        current = stack.pop()
-        yield current
-        stack.extend(reversed(list(current.componentInstances)))
-
-
 def connections(root: EObject) -> Iterator[EObject]:
     """Every connection instance of ``root`` and of the components below it."""
-    for component in components(root):
+    for component in model.component_instances(root):
         yield from component.connectionInstances
-
-
-def _segment(obj: EObject) -> str:
-    name = obj.name or ""
-    index = getattr(obj, "index", None)
-    if index is None:
-        return name
-    if isinstance(index, int):
-        return f"{name}[{index}]" if index > 0 else name
-    return name + "".join(f"[{i}]" for i in index)
-
-
-def instance_path(obj: EObject) -> str:
-    """``top.sw.cam.publisher`` (as :func:`rosaadl.model.instance_path`)."""
-    parts = []
-    current = obj
-    while current is not None and is_kind(current, "InstanceObject"):
-        parts.append(_segment(current))
-        current = current.eContainer()
-    return ".".join(reversed(parts))
 
 
 def owner_component(obj: EObject) -> EObject | None:
     """The component instance a feature instance belongs to (through feature groups)."""
     current = obj.eContainer() if obj is not None else None
-    while current is not None and not is_kind(current, "ComponentInstance"):
+    while current is not None and not model.is_a(current, "ComponentInstance"):
         current = current.eContainer()
     return current
 
@@ -96,7 +54,7 @@ def process_of(obj: EObject) -> EObject | None:
     """The process instance that contains ``obj`` (itself for a process), or None."""
     current = obj
     while current is not None:
-        if is_kind(current, "ComponentInstance") and enum_name(current.category) == "process":
+        if model.is_a(current, "ComponentInstance") and enum_name(current.category) == "process":
             return current
         current = current.eContainer()
     return None

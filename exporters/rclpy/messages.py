@@ -33,7 +33,7 @@ from pyecore.ecore import EObject
 from rosaadl import model as _model
 from rosaadl.errors import Diagnostic, Location, RosaadlError
 from rosaadl.exporters.rclpy import naming
-from rosaadl.exporters.rclpy.instances import instance_path, is_kind, prop
+from rosaadl.exporters.rclpy.instances import prop
 from rosaadl.importers import ros_msg
 from rosaadl.properties import own_property, property_name_matches
 
@@ -318,7 +318,7 @@ class MessageCatalog:
     # ------------------------------------------------------------------ look-ups
 
     def _warn(self, message: str, element: EObject | None = None) -> None:
-        path = instance_path(element) if element is not None and _is_instance(element) else None
+        path = _model.instance_path(element) if element is not None and _is_instance(element) else None
         self.diagnostics.append(Diagnostic("warning", message, Location(path=path)))
         log.warning("%s%s", f"{path}: " if path else "", message)
 
@@ -624,7 +624,7 @@ class MessageCatalog:
         impl = classifier
         if resolver is None:
             return False
-        if not is_kind(impl, "ComponentImplementation"):
+        if not _model.is_a(impl, "ComponentImplementation"):
             impl = self._first_implementation(classifier)
             if impl is None:
                 return False
@@ -656,7 +656,7 @@ class MessageCatalog:
         unit = ctype.eContainer()
         wanted = (ctype.name or "").lower() + "."
         for candidate in getattr(unit, "classifiers", ()):
-            if (candidate.name or "").lower().startswith(wanted) and is_kind(
+            if (candidate.name or "").lower().startswith(wanted) and _model.is_a(
                 candidate, "ComponentImplementation"
             ):
                 subs = self._resolver.subcomponents(candidate) if self._resolver else []
@@ -715,4 +715,4 @@ def _model_enum(value: object) -> str:
 
 
 def _is_instance(element: EObject) -> bool:
-    return is_kind(element, "InstanceObject")
+    return _model.is_a(element, "InstanceObject")

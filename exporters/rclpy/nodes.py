@@ -29,9 +29,10 @@ from dataclasses import dataclass, field
 
 from pyecore.ecore import EObject
 
+from rosaadl import model
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import naming
-from rosaadl.exporters.rclpy.instances import enum_name, instance_path, key, prop
+from rosaadl.exporters.rclpy.instances import enum_name, key, prop
 from rosaadl.exporters.rclpy.messages import InterfaceType, MessageCatalog
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.topics import Topology
@@ -326,7 +327,7 @@ class NodeBuilder:
         self.diagnostics: list[Diagnostic] = []
 
     def _warn(self, message: str, obj: EObject | None = None) -> None:
-        path = instance_path(obj) if obj is not None else None
+        path = model.instance_path(obj) if obj is not None else None
         self.diagnostics.append(Diagnostic("warning", message, Location(path=path)))
         log.warning("%s%s", f"{path}: " if path else "", message)
 

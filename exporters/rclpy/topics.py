@@ -21,18 +21,10 @@ from dataclasses import dataclass, field
 
 from pyecore.ecore import EObject
 
+from rosaadl import model
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import naming
-from rosaadl.exporters.rclpy.instances import (
-    components,
-    connections,
-    enum_name,
-    instance_path,
-    is_kind,
-    owner_component,
-    process_of,
-    prop,
-)
+from rosaadl.exporters.rclpy.instances import connections, enum_name, owner_component, process_of, prop
 
 __all__ = [
     "Topology",
@@ -41,7 +33,6 @@ __all__ = [
     "enum_name",
     "owner_component",
     "process_of",
-    "components",
 ]
 
 log = logging.getLogger(__name__)
@@ -135,8 +126,8 @@ class Topology:
             self._uf.union(self._remember(source), self._remember(destination))
         elif kind == "accessConnection":
             ends = [source, destination]
-            data = [e for e in ends if is_kind(e, "ComponentInstance")]
-            features = [e for e in ends if is_kind(e, "FeatureInstance")]
+            data = [e for e in ends if model.is_a(e, "ComponentInstance")]
+            features = [e for e in ends if model.is_a(e, "FeatureInstance")]
             if data and features:
                 thread = owner_component(features[0])
                 if thread is not None:
@@ -174,7 +165,7 @@ class Topology:
                 if id(other) in seen:
                     continue
                 seen.add(id(other))
-                other_owner = owner_component(other) if is_kind(other, "FeatureInstance") else None
+                other_owner = owner_component(other) if model.is_a(other, "FeatureInstance") else None
                 if other_owner is None or not _is_ancestor(other_owner, current_owner):
                     continue
                 if other_owner is process:
@@ -193,7 +184,7 @@ class Topology:
         while frontier:
             current = frontier.pop(0)
             for other in self._outward.get(id(current), ()):
-                if id(other) in seen or not is_kind(other, "FeatureInstance"):
+                if id(other) in seen or not model.is_a(other, "FeatureInstance"):
                     continue
                 seen.add(id(other))
                 if other.classifier:
@@ -292,7 +283,7 @@ class Topology:
         return name
 
     def _warn(self, message: str, obj: EObject) -> None:
-        path = instance_path(obj) if is_kind(obj, "InstanceObject") else None
+        path = model.instance_path(obj) if model.is_a(obj, "InstanceObject") else None
         self.diagnostics.append(Diagnostic("warning", message, Location(path=path)))
         log.warning("%s: %s", path, message)
 

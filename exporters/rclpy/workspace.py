@@ -33,14 +33,7 @@ from rosaadl import model as _model
 from rosaadl.errors import Diagnostic, GenerationError, Location, RosaadlError, UsageError
 from rosaadl.exporters.rclpy import naming, preservation
 from rosaadl.exporters.rclpy.deployment import Deployment, HostPlan, NodeInstance, find_feature
-from rosaadl.exporters.rclpy.instances import (
-    caching,
-    components,
-    enum_name,
-    instance_path,
-    is_kind,
-    prop,
-)
+from rosaadl.exporters.rclpy.instances import caching, enum_name, prop
 from rosaadl.exporters.rclpy.instances import key as instance_key
 from rosaadl.exporters.rclpy.messages import InterfaceDefinition, MessageCatalog
 from rosaadl.exporters.rclpy.nodes import NodeBuilder, NodeClass
@@ -197,10 +190,10 @@ class GenerationResult:
 def _system_instance(source: EObject, root: str | None) -> tuple[EObject | None, EObject]:
     """(AadlModel or None, SystemInstance) from an instance, a model with instances, or a
     declarative model and a root implementation name (instantiated here)."""
-    if is_kind(source, "SystemInstance"):
+    if _model.is_a(source, "SystemInstance"):
         container = source.eContainer()
-        return (container if container is not None and is_kind(container, "AadlModel") else None), source
-    if not is_kind(source, "AadlModel"):
+        return (container if container is not None and _model.is_a(container, "AadlModel") else None), source
+    if not _model.is_a(source, "AadlModel"):
         raise UsageError(f"expected an AadlModel or a SystemInstance, got a {source.eClass.name}")
     instances = list(source.instances)
     if root:
@@ -241,7 +234,7 @@ def _default_year() -> int:
 
 def _processes(root: EObject) -> list[EObject]:
     found = []
-    for obj in components(root):
+    for obj in _model.component_instances(root):
         if enum_name(obj.category) == "process":
             found.append(obj)
     return found
@@ -260,7 +253,7 @@ def _package_of(process: EObject, app: str, model: EObject | None) -> str:
         unit = _model.find_unit(model, package) if model is not None else None
         kind = own_property(unit, "Unit_Kind") if unit is not None else None
         if kind is not None and str(kind).lower() == "deployment":
-            for child in components(process):
+            for child in _model.component_instances(process):
                 software = child.classifier or ""
                 if child is not process and "::" in software:
                     package = software.rpartition("::")[0]
@@ -328,7 +321,7 @@ def _plan(
         if package in reserved:
             package = naming.package_name(f"{package}_nodes")
         signature = builder.signature(process)
-        key = (package, (process.classifier or "").lower() or instance_path(process), signature)
+        key = (package, (process.classifier or "").lower() or _model.instance_path(process), signature)
         cls = classes.get(key)
         if cls is None:
             pkg = packages.get(package)
@@ -485,7 +478,7 @@ def _render_files(plan: WorkspacePlan, options: GenerationOptions) -> None:
             text = render_template(
                 "node.py.j2",
                 cls=cls,
-                instance_paths=[instance_path(p) for p in cls.instances],
+                instance_paths=[_model.instance_path(p) for p in cls.instances],
                 **common,
             )
             keys = {cls.marker(part): f"{cls.key}#{part}" for part in ("imports", "init", "members")}
