@@ -4,23 +4,32 @@ What it offers (after ATL, QVT-o and Epsilon ETL)::
 
     t = Transformation("rosmod2aadl")
 
-    @t.rule("rosmod.Component", to="ComponentType", when=lambda ctx, c: c.name)
-    def component(ctx, src, tgt):          # create phase: attributes, contained objects
-        tgt.name = src.name
+    @t.rule("rosmod.Component", when=lambda ctx, c: c.name)
+    def component(ctx, src):               # create phase: make the targets, return them
+        return model.new("ComponentType", name=src.name)
 
     @component.bind
     def component_bind(ctx, src, tgt):     # bind phase: cross references via ctx.resolve
         ...
 
-    result = t.run([project])              # result.targets, result.trace
+    result = t.run([project])              # result.trace, result.warnings, result.context
 
 * rules are plain functions with an explicit :class:`Context` argument (no injected globals);
+  a create part returns its targets (an object, a tuple of them, or None for none);
 * most-specific dispatch: a rule on ``Subscriber`` wins over a rule on ``CallbackPort`` for a
-  subscriber; two equally specific rules that both match are an error, not a coin toss;
-* ``lazy=True`` rules run only when asked (``ctx.lazy(rule, src)``), and are *unique*: the same
-  source gives the same target;
-* create-then-bind: every create part runs before any bind part, so rules never depend on order;
-* ``ctx.resolve(src)`` / ``ctx.resolve_one(src, "Target")`` read the trace;
+  subscriber; ``when=`` guards choose between rules on one class; two equally specific rules
+  that both match are an error, not a coin toss;
+* ``lazy=True`` rules run only when asked (``ctx.lazy(rule, *sources)``), and are *unique*: the
+  same sources give the same target — one rule can so map a pair of elements (a node and one of
+  its component instances) where a matched rule sees one;
+* create-then-bind: every create part runs before any bind part, so a bind part finds every
+  target with ``ctx.resolve(src)``;
+* the run visits the source models' objects in document order, or in the order a
+  transformation's ``walk=`` gives (the elements it maps, in the order its warnings should
+  come);
+* the trace is a ``trace.ecore`` model: one link per rule application, its ends keyed when the
+  rule ran (a transformation whose targets get their containers later keys them again once its
+  target model is complete: :func:`rosaadl.transforms.trace.key_targets`);
 * any failure inside a rule becomes a :class:`~rosaadl.errors.TransformationError` naming the
   rule, the source element and, where known, its file and line.
 """
@@ -28,7 +37,7 @@ What it offers (after ATL, QVT-o and Epsilon ETL)::
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -44,17 +53,7 @@ __all__ = ["Rule", "Transformation", "Context", "TransformationResult", "source_
 log = logging.getLogger(__name__)
 
 Guard = Callable[["Context", EObject], bool]
-
-
-def _as_eclass(spec: str | EClass | type) -> EClass:
-    if isinstance(spec, EClass):
-        return spec
-    if isinstance(spec, str):
-        return model.eclass_of(spec)
-    eclass = getattr(spec, "eClass", None)
-    if isinstance(eclass, EClass):
-        return eclass
-    raise TypeError(f"not a metamodel class: {spec!r}")
+Walk = Callable[[EObject], Iterable[EObject]]
 
 
 def source_location(obj: EObject) -> Location:
@@ -79,16 +78,14 @@ def describe(obj: EObject) -> str:
 
 @dataclass
 class Rule:
-    """One transformation rule: source class, guard, targets, create and bind parts."""
+    """One transformation rule: source class, guard, create and bind parts."""
 
     name: str
     source: EClass
     create: Callable[..., Any]
-    to: tuple[Any, ...] = ()
     when: Guard | None = None
     lazy: bool = False
     bind_fn: Callable[..., Any] | None = None
-    depth: int = 0  # number of supertypes of ``source``: larger is more specific
 
     def bind(self, fn: Callable[..., Any]) -> Callable[..., Any]:
         """Decorator: the bind part of this rule (runs after every create part)."""
@@ -96,8 +93,6 @@ class Rule:
         return fn
 
     def matches(self, ctx: Context, obj: EObject) -> bool:
-        if not isinstance(obj, self.source.python_class):
-            return False
         if self.when is None:
             return True
         try:
@@ -113,7 +108,7 @@ class Rule:
         return self.create(*args, **kwargs)
 
 
-@dataclass
+@dataclass(slots=True)
 class _Application:
     rule: Rule
     sources: tuple[EObject, ...]
@@ -122,83 +117,60 @@ class _Application:
 
 
 class Context:
-    """What a rule sees: the trace so far, resolution, lazy rules, shared options and diagnostics."""
+    """What a rule sees: resolution, lazy rules, shared options and diagnostics."""
 
-    def __init__(self, transformation: Transformation, options: dict[str, Any]) -> None:
+    def __init__(self, transformation: Transformation, options: dict[str, Any], trace: bool) -> None:
         self.transformation = transformation
         self.options = dict(options)
-        self.trace = tracing.new_trace(transformation.name)
-        self.builder = FastBuilder()  # bulk construction for the trace and for rules that want it
+        self.trace = tracing.new_trace(transformation.name) if trace else None
         self.warnings: list[RosaadlError] = []
+        self._builder = FastBuilder()  # bulk construction of the trace's links
         self._applications: list[_Application] = []
         self._by_source: dict[int, list[_Application]] = {}
         self._lazy_cache: dict[tuple[str, tuple[int, ...]], _Application] = {}
         self._phase = "create"
-        self.roots: list[EObject] = []
+        self._current_rule: str | None = None
 
-    # -- resolution ---------------------------------------------------------------------------
     def resolve(self, source: EObject, rule: str | Rule | None = None) -> list[EObject]:
         """Every target made from ``source`` (optionally by one rule), in creation order."""
         rule_name = rule.name if isinstance(rule, Rule) else rule
         out: list[EObject] = []
-        for app in self._by_source.get(id(source), []):
+        for app in self._by_source.get(id(source), ()):
             if rule_name is None or app.rule.name == rule_name:
                 out.extend(app.targets)
         return out
 
-    def resolve_one(self, source: EObject, target_class: str | EClass | None = None) -> EObject:
-        """The single target of ``source`` (of ``target_class`` when given); an error otherwise."""
-        targets = self.resolve(source)
-        if target_class is not None:
-            cls = _as_eclass(target_class).python_class
-            targets = [t for t in targets if isinstance(t, cls)]
-        if len(targets) != 1:
-            wanted = f" of class {_as_eclass(target_class).name}" if target_class is not None else ""
-            hint = (
-                " (resolve in a bind part: every create part runs first)" if self._phase == "create" else ""
-            )
-            raise TransformationError(
-                f"expected exactly one target{wanted}, found {len(targets)}{hint}",
-                source_location(source),
-                rule=self._current_rule_name(),
-                source=describe(source),
-            )
-        return targets[0]
+    def resolve_all(self, sources: Iterable[EObject], rule: str | Rule | None = None) -> list[EObject]:
+        """Every target made from each of ``sources`` (optionally by one rule), in their order."""
+        return [target for source in sources for target in self.resolve(source, rule)]
 
-    def resolve_optional(self, source: EObject, target_class: str | EClass | None = None) -> EObject | None:
-        targets = self.resolve(source)
-        if target_class is not None:
-            cls = _as_eclass(target_class).python_class
-            targets = [t for t in targets if isinstance(t, cls)]
-        return targets[0] if targets else None
-
-    def lazy(self, rule: str | Rule, *sources: EObject) -> EObject | tuple[EObject, ...]:
-        """Apply a lazy rule; the same sources always give the same target(s)."""
+    def lazy(self, rule: str | Rule, *sources: EObject) -> EObject | None:
+        """Apply a lazy rule to ``sources``; the same sources always give the same application.
+        Its first target (None when it made none); ``resolve`` gives them all."""
         chosen = self.transformation.get_rule(rule)
         key = (chosen.name, tuple(id(s) for s in sources))
         app = self._lazy_cache.get(key)
         if app is None:
+            current = self._current_rule
             app = self.transformation._apply(self, chosen, sources)
+            self._current_rule = current
             self._lazy_cache[key] = app
             if self._phase == "bind":
                 self.transformation._bind(self, app)
-        return app.targets[0] if len(app.targets) == 1 else app.targets
+                self._current_rule = current
+        return app.targets[0] if app.targets else None
 
     def warn(self, message: str, obj: EObject | None = None) -> None:
         location = source_location(obj) if obj is not None else Location()
-        self.warnings.append(TransformationError(message, location, rule=self._current_rule_name()))
+        self.warnings.append(TransformationError(message, location, rule=self._current_rule))
         log.warning("%s", message)
-
-    def _current_rule_name(self) -> str | None:
-        return getattr(self, "_current_rule", None)
 
 
 @dataclass
 class TransformationResult:
-    roots: list[EObject]
-    trace: EObject
+    trace: EObject | None  #: the ``trace.Trace`` (None when the run was asked for none)
     warnings: list[RosaadlError] = field(default_factory=list)
-    context: Context | None = None
+    context: Context | None = None  #: for ``context.resolve`` after the run
 
 
 class Transformation:
@@ -213,34 +185,20 @@ class Transformation:
     # -- declaration --------------------------------------------------------------------------
     def rule(
         self,
-        source: str | EClass | type,
+        source: str | EClass,
         *,
-        to: Any = None,
         when: Guard | None = None,
         lazy: bool = False,
         name: str | None = None,
     ) -> Callable[[Callable[..., Any]], Rule]:
-        """Decorator declaring a rule from ``source`` objects to new ``to`` objects.
-
-        ``to`` is a metamodel class (name or EClass), a tuple of them (several targets, passed to
-        the function in order), or None (the function creates and returns its targets itself).
-        """
-        eclass = _as_eclass(source)
-        targets = () if to is None else tuple(to) if isinstance(to, (tuple, list)) else (to,)
+        """Decorator declaring a rule on ``source`` objects (a metamodel class or its name)."""
+        eclass = model.eclass_of(source)
 
         def decorate(fn: Callable[..., Any]) -> Rule:
             rule_name = name or fn.__name__
             if rule_name in self._by_name:
                 raise ValueError(f"transformation {self.name}: rule {rule_name!r} is declared twice")
-            created = Rule(
-                name=rule_name,
-                source=eclass,
-                create=fn,
-                to=tuple(_as_eclass(t) for t in targets),
-                when=when,
-                lazy=lazy,
-                depth=len(list(eclass.eAllSuperTypes())),
-            )
+            created = Rule(name=rule_name, source=eclass, create=fn, when=when, lazy=lazy)
             self._rules.append(created)
             self._by_name[rule_name] = created
             self._dispatch_cache.clear()
@@ -256,10 +214,6 @@ class Transformation:
         except KeyError:
             raise TransformationError(f"no rule named {rule!r} in transformation {self.name}") from None
 
-    @property
-    def rules(self) -> Sequence[Rule]:
-        return tuple(self._rules)
-
     # -- dispatch -----------------------------------------------------------------------------
     def _candidates(self, eclass: EClass) -> list[Rule]:
         cached = self._dispatch_cache.get(eclass)
@@ -271,9 +225,15 @@ class Transformation:
 
     def select(self, ctx: Context, obj: EObject) -> Rule | None:
         """The most specific non-lazy rule whose class and guard match ``obj`` (None if none)."""
-        matching = [r for r in self._candidates(obj.eClass) if r.matches(ctx, obj)]
-        if not matching:
-            return None
+        candidates = self._candidates(obj.eClass)
+        try:
+            matching = [r for r in candidates if r.when is None or r.when(ctx, obj)]
+        except RosaadlError:
+            raise
+        except Exception:
+            matching = [r for r in candidates if r.matches(ctx, obj)]  # names the guard that failed
+        if len(matching) < 2:
+            return matching[0] if matching else None
         # drop every rule whose source class is a strict supertype of another matching rule's
         specific = [
             r
@@ -298,15 +258,13 @@ class Transformation:
     def _apply(self, ctx: Context, rule: Rule, sources: tuple[EObject, ...]) -> _Application:
         ctx._current_rule = rule.name
         try:
-            targets = tuple(model.new(t) for t in rule.to)
-            result = rule.create(ctx, *sources, *targets)
-            if not rule.to:
-                if result is None:
-                    targets = ()
-                elif isinstance(result, EObject):
-                    targets = (result,)
-                else:
-                    targets = tuple(result)
+            result = rule.create(ctx, *sources)
+            if result is None:
+                targets: tuple[EObject, ...] = ()
+            elif isinstance(result, EObject):
+                targets = (result,)
+            else:
+                targets = tuple(result)
         except TransformationError as exc:
             if exc.rule is None:
                 raise TransformationError(
@@ -330,7 +288,8 @@ class Transformation:
         ctx._applications.append(app)
         for src in sources:
             ctx._by_source.setdefault(id(src), []).append(app)
-        tracing.add_link(ctx.trace, rule.name, sources, targets, builder=ctx.builder)
+        if ctx.trace is not None:
+            tracing.add_link(ctx.trace, rule.name, sources, targets, builder=ctx._builder)
         return app
 
     def _bind(self, ctx: Context, app: _Application) -> None:
@@ -360,23 +319,34 @@ class Transformation:
         finally:
             ctx._current_rule = None
 
-    def run(self, sources: Iterable[EObject] | EObject, **options: Any) -> TransformationResult:
-        """Apply the rules to every object of the source models: create phase, then bind phase."""
+    def run(
+        self,
+        sources: Iterable[EObject] | EObject,
+        *,
+        walk: Walk | None = None,
+        trace: bool = True,
+        **options: Any,
+    ) -> TransformationResult:
+        """Apply the rules to the objects of the source models (every contained object, or what
+        ``walk`` gives for each of them): create phase, then bind phase. ``options`` are the
+        context's; ``trace=False`` records no trace."""
         roots = [sources] if isinstance(sources, EObject) else list(sources)
-        ctx = Context(self, options)
-        ctx.roots = roots
+        ctx = Context(self, options, trace)
+        visit = walk or model.walk
         for root in roots:
-            for obj in model.walk(root):
+            for obj in visit(root):
                 rule = self.select(ctx, obj)
                 if rule is not None:
                     self._apply(ctx, rule, (obj,))
         ctx._phase = "bind"
         index = 0
-        while index < len(ctx._applications):  # lazy rules may add applications while binding
-            self._bind(ctx, ctx._applications[index])
+        applications = ctx._applications
+        while index < len(applications):  # lazy rules may add applications while binding
+            app = applications[index]
+            if app.rule.bind_fn is not None:
+                self._bind(ctx, app)
             index += 1
-        produced = [t for app in ctx._applications for t in app.targets if t.eContainer() is None]
-        return TransformationResult(roots=produced, trace=ctx.trace, warnings=list(ctx.warnings), context=ctx)
+        return TransformationResult(trace=ctx.trace, warnings=list(ctx.warnings), context=ctx)
 
 
 def _best_location(exc: RosaadlError, obj: EObject) -> Location:

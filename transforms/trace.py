@@ -6,6 +6,8 @@ identified by a *stable key*: the chain of containment features and names from t
 insert siblings, unlike positional XMI fragments. A trace is saved and read back like any model
 (:func:`rosaadl.model.save` / :func:`rosaadl.model.load`); :class:`TraceIndex` answers "what did
 this source become" and "where did this target come from" from a live or a reloaded trace.
+A rule's targets are usually made before they have a container: :func:`key_targets` keys them
+again once the target model is complete (:class:`KeyCache` computes each container's key once).
 """
 
 from __future__ import annotations
@@ -19,7 +21,17 @@ from rosaadl import model
 from rosaadl.bulk import FastBuilder
 from rosaadl.errors import ModelError
 
-__all__ = ["element_key", "find_by_key", "new_trace", "add_link", "TraceIndex", "save_trace", "load_trace"]
+__all__ = [
+    "element_key",
+    "KeyCache",
+    "find_by_key",
+    "new_trace",
+    "add_link",
+    "key_targets",
+    "TraceIndex",
+    "save_trace",
+    "load_trace",
+]
 
 
 def _step(obj: EObject) -> str:
@@ -43,6 +55,21 @@ def element_key(obj: EObject) -> str:
     return "/" + "/".join(reversed(steps))
 
 
+class KeyCache:
+    """:func:`element_key` for many objects of one model, each container's key computed once."""
+
+    def __init__(self) -> None:
+        self._keys: dict[int, str] = {}
+
+    def key(self, obj: EObject) -> str:
+        found = self._keys.get(id(obj))
+        if found is None:
+            container = obj.eContainer()
+            found = "/" if container is None else f"{self.key(container).rstrip('/')}/{_step(obj)}"
+            self._keys[id(obj)] = found
+        return found
+
+
 def find_by_key(root: EObject, key: str) -> EObject | None:
     """The object with :func:`element_key` ``key`` under ``root`` (None when it is gone)."""
     if key in ("", "/"):
@@ -61,6 +88,8 @@ def find_by_key(root: EObject, key: str) -> EObject | None:
             feature = current.eClass.findEStructuralFeature(feature_name)
             if feature is None or not feature.many:
                 return None
+            if not index.isdigit():
+                return None
             values = current.eGet(feature)
             position = int(index)
             current = values[position] if position < len(values) else None
@@ -72,10 +101,10 @@ def find_by_key(root: EObject, key: str) -> EObject | None:
     return current
 
 
-def _end(obj: EObject, uri: str | None, builder: FastBuilder) -> EObject:
+def _end(obj: EObject, builder: FastBuilder) -> EObject:
     return builder.make(
         "trace.TraceElement",
-        uri=uri or "",
+        uri="",
         path=element_key(obj),
         className=obj.eClass.name,
         object=obj,
@@ -92,21 +121,29 @@ def add_link(
     sources: Iterable[EObject],
     targets: Iterable[EObject],
     *,
-    source_uri: str | None = None,
-    target_uri: str | None = None,
     builder: FastBuilder | None = None,
 ) -> EObject:
-    """Record one rule application; pass the run's ``builder`` when adding many links."""
+    """Record one rule application, each end keyed where its object is now (see
+    :func:`key_targets`); pass the run's ``builder`` when adding many links."""
     builder = builder or FastBuilder()
     link = builder.make("trace.TraceLink", rule=rule)
-    ends = [_end(s, source_uri, builder) for s in sources]
+    ends = [_end(s, builder) for s in sources]
     if ends:
         builder.add(link, "sources", *ends)
-    ends = [_end(t, target_uri, builder) for t in targets]
+    ends = [_end(t, builder) for t in targets]
     if ends:
         builder.add(link, "targets", *ends)
     builder.add(trace, "links", link)
     return link
+
+
+def key_targets(trace: EObject) -> None:
+    """Key every target end again where its object is now: the targets of a transformation get
+    their containers after their link was recorded."""
+    keys = KeyCache()
+    for link in trace.links:
+        for end in link.targets:
+            end.path = keys.key(end.object)
 
 
 class TraceIndex:
@@ -144,6 +181,6 @@ def save_trace(trace: EObject, path: str | Path) -> Path:
 
 def load_trace(path: str | Path) -> EObject:
     loaded = model.load(path, fmt="json" if str(path).endswith(".json") else "xmi")
-    if loaded.eClass.name != "Trace":
+    if not model.is_a(loaded, "trace.Trace"):
         raise ModelError(f"{path}: expected a trace model, found a {loaded.eClass.name}")
     return loaded

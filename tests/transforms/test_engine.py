@@ -1,4 +1,4 @@
-"""The rule engine: dispatch, guards, lazy unique rules, resolve, phases, trace, errors."""
+"""The rule engine: dispatch, guards, lazy unique rules, walks, resolve, phases, trace, errors."""
 
 from __future__ import annotations
 
@@ -9,7 +9,14 @@ import pytest
 from rosaadl import model
 from rosaadl.errors import TransformationError
 from rosaadl.transforms.engine import Transformation
-from rosaadl.transforms.trace import TraceIndex, element_key, find_by_key, load_trace, save_trace
+from rosaadl.transforms.trace import (
+    TraceIndex,
+    element_key,
+    find_by_key,
+    key_targets,
+    load_trace,
+    save_trace,
+)
 
 
 def _component():
@@ -29,71 +36,73 @@ def _component():
     return software, comp
 
 
+def _feature(src, classifier: str):
+    return model.new("Feature", name=src.name, classifier=classifier)
+
+
 def _to_aadl() -> Transformation:
     t = Transformation("test")
 
-    @t.rule("rosmod.Component", to="ComponentType")
-    def component(ctx, src, tgt):
-        tgt.name = src.name
-        tgt.category = (
-            model.eclass_of("ComponentType")
-            .findEStructuralFeature("category")
-            .eType.from_string("thread group")
-        )
+    @t.rule("rosmod.Component")
+    def component(ctx, src):
+        return model.new("ComponentType", name=src.name, category="thread group")
 
-    @t.rule("rosmod.Port", to="Feature")
-    def any_port(ctx, src, tgt):
-        tgt.name = src.name
-        tgt.classifier = "generic"
+    @t.rule("rosmod.Port")
+    def any_port(ctx, src):
+        return _feature(src, "generic")
 
-    @t.rule("rosmod.CallbackPort", to="Feature")
-    def callback_port(ctx, src, tgt):
-        tgt.name = src.name
-        tgt.classifier = "callback"
+    @t.rule("rosmod.CallbackPort")
+    def callback_port(ctx, src):
+        return _feature(src, "callback")
 
-    @t.rule("rosmod.Subscriber", to="Feature")
-    def subscriber(ctx, src, tgt):
-        tgt.name = src.name
-        tgt.classifier = "subscriber"
+    @t.rule("rosmod.Subscriber")
+    def subscriber(ctx, src):
+        return _feature(src, "subscriber")
 
-    @t.rule("rosmod.Timer", to="Feature", when=lambda ctx, timer: timer.period is not None)
-    def timer(ctx, src, tgt):
-        tgt.name = src.name
-        tgt.classifier = "timer"
+    @t.rule("rosmod.Timer", when=lambda ctx, timer: timer.period is not None)
+    def timer(ctx, src):
+        return _feature(src, "timer")
 
     @component.bind
     def component_bind(ctx, src, tgt):
         for port in list(src.ports) + list(src.timers):
-            tgt.features.append(ctx.resolve_one(port, "Feature"))
+            tgt.features.extend(ctx.resolve(port))
 
     return t
+
+
+def _made(result, source, rule=None):
+    (target,) = result.context.resolve(source, rule)
+    return target
 
 
 def test_most_specific_rule_wins_and_binding_after_creation() -> None:
     software, comp = _component()
     result = _to_aadl().run(software)
-    (ct,) = [r for r in result.roots if r.eClass.name == "ComponentType"]
+    ct = _made(result, comp)
     kinds = {f.name: f.classifier for f in ct.features}
     assert kinds == {"image_in": "subscriber", "point_out": "generic", "reset": "callback", "tick": "timer"}
     assert ct.category.literal == "thread group"
+    made = result.context.resolve_all([*comp.timers, *comp.ports])
+    assert [f.name for f in made] == ["tick", "image_in", "point_out", "reset"]
+    assert [f.name for f in result.context.resolve_all(comp.ports, "subscriber")] == ["image_in"]
 
 
 def test_guard_excludes_objects() -> None:
     software, comp = _component()
     comp.timers[0].period = None
-    t = _to_aadl()
-    t.get_rule("component_bind" if False else "component").bind_fn = lambda ctx, s, tgt: None
-    result = t.run(software)
-    assert "tick" not in {r.name for r in result.roots}
+    result = _to_aadl().run(software)
+    assert result.context.resolve(comp.timers[0]) == []
+    assert "tick" not in {f.name for f in _made(result, comp).features}
 
 
 def test_ambiguous_rules_are_an_error_naming_both() -> None:
     software, _ = _component()
     t = _to_aadl()
 
-    @t.rule("rosmod.Subscriber", to="Feature")
-    def subscriber_again(ctx, src, tgt):
-        tgt.name = src.name
+    @t.rule("rosmod.Subscriber")
+    def subscriber_again(ctx, src):
+        return _feature(src, "again")
 
     with pytest.raises(
         TransformationError, match="subscriber.*subscriber_again|subscriber_again.*subscriber"
@@ -106,14 +115,14 @@ def test_lazy_rules_are_unique_and_only_run_when_asked() -> None:
     t = Transformation("lazy")
     calls = []
 
-    @t.rule("rosmod.Timer", to="Subcomponent", lazy=True)
-    def thread_for(ctx, src, tgt):
+    @t.rule("rosmod.Timer", lazy=True)
+    def thread_for(ctx, src):
         calls.append(src.name)
-        tgt.name = f"{src.name}_thread"
+        return model.new("Subcomponent", name=f"{src.name}_thread")
 
-    @t.rule("rosmod.Component", to="ComponentImplementation")
-    def impl(ctx, src, tgt):
-        tgt.name = f"{src.name}.impl"
+    @t.rule("rosmod.Component")
+    def impl(ctx, src):
+        return model.new("ComponentImplementation", name=f"{src.name}.impl")
 
     @impl.bind
     def impl_bind(ctx, src, tgt):
@@ -124,39 +133,97 @@ def test_lazy_rules_are_unique_and_only_run_when_asked() -> None:
 
     result = t.run(software)
     assert calls == ["tick"]
-    (impl_obj,) = result.roots
+    impl_obj = _made(result, comp)
     assert [s.name for s in impl_obj.subcomponents] == ["tick_thread"]
     assert result.context.resolve(comp.timers[0]) == [impl_obj.subcomponents[0]]
 
 
-def test_resolve_in_create_phase_explains_bind_phase() -> None:
+def test_a_lazy_rule_maps_pairs_and_binds_what_it_makes_while_binding() -> None:
+    """One target per pair of sources (a port of each component instance, say), and a lazy
+    application made in the bind phase has its bind part run too."""
     software, comp = _component()
-    t = Transformation("early")
+    t = Transformation("pairs")
+    bound = []
 
-    @t.rule("rosmod.Component", to="ComponentType")
-    def component(ctx, src, tgt):
-        ctx.resolve_one(src.timers[0])
+    @t.rule("rosmod.Port", lazy=True)
+    def port_of(ctx, port, timer):
+        return model.new("Feature", name=f"{timer.name}_{port.name}")
 
-    @t.rule("rosmod.Timer", to="Feature")
-    def timer(ctx, src, tgt):
-        tgt.name = src.name
+    @port_of.bind
+    def port_of_bind(ctx, port, timer, feature):
+        bound.append(feature.name)
 
-    with pytest.raises(TransformationError) as info:
-        t.run(software)
-    err = info.value
-    assert err.rule == "component"
-    assert "bind part" in err.message
-    # located on the object that could not be resolved yet
-    assert err.location.file == "proj/01-Software/sw.rml"
-    assert err.location.path == "/packages[pkg]/components[tracker]/timers[tick]"
+    @t.rule("rosmod.Component")
+    def group(ctx, src):
+        return model.new("ComponentType", name=src.name)
+
+    @group.bind
+    def group_bind(ctx, src, tgt):
+        for timer in src.timers:
+            for port in src.ports:
+                tgt.features.append(ctx.lazy(port_of, port, timer))
+        assert ctx.lazy(port_of, src.ports[0], src.timers[0]) is tgt.features[0]
+
+    result = t.run(software)
+    assert [f.name for f in _made(result, comp).features] == ["tick_image_in", "tick_point_out", "tick_reset"]
+    assert bound == ["tick_image_in", "tick_point_out", "tick_reset"]
+    (link,) = [
+        link for link in result.trace.links if link.targets and link.targets[0].object.name == "tick_reset"
+    ]
+    assert [e.className for e in link.sources] == ["Server", "Timer"]
+
+
+def test_the_walk_chooses_what_is_visited_and_in_which_order() -> None:
+    software, comp = _component()
+    t = Transformation("ordered")
+    seen = []
+
+    @t.rule("rosmod.Port")
+    def port(ctx, src):
+        seen.append(src.name)
+
+    def ports_backwards(root):
+        yield from reversed(list(comp.ports))
+
+    result = t.run(software, walk=ports_backwards)
+    assert seen == ["reset", "point_out", "image_in"]
+    assert [link.rule for link in result.trace.links] == ["port"] * 3  # no target, still traced
+
+
+def test_a_run_without_trace_resolves_all_the_same() -> None:
+    software, comp = _component()
+    result = _to_aadl().run(software, trace=False)
+    assert result.trace is None
+    assert {f.name for f in _made(result, comp).features} == {"image_in", "point_out", "reset", "tick"}
+
+
+def test_targets_are_keyed_again_where_they_end_up() -> None:
+    software, comp = _component()
+    t = _to_aadl()
+
+    @t.rule("rosmod.Package")
+    def package(ctx, src):
+        return model.new("AadlPackage", name=src.name)
+
+    @package.bind
+    def package_bind(ctx, src, tgt):
+        for component in src.components:
+            tgt.classifiers.extend(ctx.resolve(component))
+
+    result = t.run(software)
+    (link,) = TraceIndex(result.trace).links_from(comp.ports[0])
+    assert [e.path for e in link.targets] == ["/"]  # made before it had a container
+    key_targets(result.trace)
+    (link,) = TraceIndex(result.trace).links_from(comp.ports[0])
+    assert [e.path for e in link.targets] == ["/classifiers[tracker]/features[image_in]"]
 
 
 def test_rule_failure_names_rule_source_file_and_line() -> None:
     software, comp = _component()
     t = Transformation("boom")
 
-    @t.rule("rosmod.Component", to="ComponentType")
-    def component(ctx, src, tgt):
+    @t.rule("rosmod.Component")
+    def component(ctx, src):
         raise ValueError("period missing")
 
     with pytest.raises(TransformationError) as info:
@@ -170,7 +237,7 @@ def test_misspelled_target_feature_in_rule_is_reported() -> None:
     software, _ = _component()
     t = Transformation("typo")
 
-    @t.rule("rosmod.Component", to=None)
+    @t.rule("rosmod.Component")
     def component(ctx, src):
         return model.new("ComponentType", nmae=src.name)
 
@@ -200,12 +267,12 @@ def test_trace_records_links_and_survives_save_and_load(tmp_path) -> None:
 def test_duplicate_rule_names_are_refused() -> None:
     t = Transformation("dup")
 
-    @t.rule("rosmod.Timer", to="Feature")
-    def r(ctx, s, tgt):
+    @t.rule("rosmod.Timer")
+    def r(ctx, s):
         pass
 
     with pytest.raises(ValueError, match="declared twice"):
 
-        @t.rule("rosmod.Timer", to="Feature", name="r")
-        def other(ctx, s, tgt):
+        @t.rule("rosmod.Timer", name="r")
+        def other(ctx, s):
             pass
