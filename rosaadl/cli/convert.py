@@ -56,7 +56,7 @@ def command(
         if target == "aadl":
             if len(inputs) != 1:
                 raise UsageError("give one ROSMOD project (a folder, an .rml file or a .webgmex archive)")
-            from rosaadl.transforms.rosmod_to_aadl import convert_project_files
+            from rosaadl.workflow.convert import convert_project_files
 
             written = convert_project_files(
                 inputs[0], out, project=project, trace_file=trace_file, warnings=warnings
@@ -64,7 +64,7 @@ def command(
         else:
             if trace_file is not None and not trace_file.exists():
                 raise UsageError("no such trace file", file=str(trace_file))
-            from rosaadl.transforms.aadl_to_rosmod import convert_aadl_files
+            from rosaadl.workflow.convert import convert_aadl_files
 
             written = convert_aadl_files(
                 list(inputs), out, trace_file=trace_file, roots=list(roots) or None, warnings=warnings

@@ -15,14 +15,16 @@ from rosaadl import model
 from rosaadl.errors import Diagnostic, TransformationError
 from rosaadl.exporters.rosmod_text import write_project
 from rosaadl.importers import rosmod_text, rosmod_webgme
+from rosaadl.properties import own_property
 from rosaadl.transforms import trace as tracing
 from rosaadl.transforms.aadl_to_rosmod import (
     aadl_to_rosmod,
-    convert_aadl_files,
+    aadl_to_rosmod_traced,
     is_rosmod_convention,
     top_level_systems,
 )
 from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+from rosaadl.workflow.convert import convert_aadl_files, library_units
 
 _WRITER = importlib.util.find_spec("rosaadl.exporters.aadl_text") is not None
 _READER = _WRITER and importlib.util.find_spec("rosaadl.importers.aadl_text") is not None
@@ -132,7 +134,7 @@ def test_in_memory_round_trip(project):
 def test_round_trip_through_aadl_text(project, tmp_path):
     _, aadl = through_text(project, tmp_path)
     warnings: list[Diagnostic] = []
-    back = aadl_to_rosmod(aadl, warnings=warnings)
+    back = aadl_to_rosmod(aadl, library=library_units(aadl), warnings=warnings)
     assert model.model_differences(project, back) == []
     assert warnings == []
 
@@ -145,7 +147,7 @@ def test_the_trace_gives_the_names_back(project, tmp_path):
     without = aadl_to_rosmod(aadl)
     assert {d.name for d in without.deployments} == {"field_test"}
     assert {h.name for h in without.systems[0].hosts} == {"board_1", "laptop"}
-    with_trace = aadl_to_rosmod(aadl, trace=trace_file)
+    with_trace = aadl_to_rosmod(aadl, trace=tracing.load_trace(trace_file))
     assert model.model_differences(project, with_trace) == []
 
 
@@ -182,7 +184,7 @@ def test_elements_outside_the_convention_are_located_warnings(project, tmp_path)
 
     _, aadl = through_text(project, tmp_path, edit)
     warnings: list[Diagnostic] = []
-    back = aadl_to_rosmod(aadl, warnings=warnings)
+    back = aadl_to_rosmod(aadl, library=library_units(aadl), warnings=warnings)
     assert [w.message for w in warnings] == [
         "device camera of field_test.impl has no ROSMOD counterpart; skipped"
     ]
@@ -348,9 +350,10 @@ def test_best_effort_on_a_model_of_our_own(tmp_path):
     (tmp_path / "robot_sw.aadl").write_text(ROBOT)
     aadl = read_files([tmp_path / "robot_sw.aadl"])
     assert not is_rosmod_convention(aadl)
-    assert top_level_systems(aadl) == ["robot_sw::robot.impl"]
+    library = library_units(aadl)
+    assert top_level_systems(aadl, library=library) == ["robot_sw::robot.impl"]
     warnings: list[Diagnostic] = []
-    project = aadl_to_rosmod(aadl, warnings=warnings)
+    project = aadl_to_rosmod(aadl, library=library, warnings=warnings)
     (deployment,) = project.deployments
     assert [(n.name, n.host.name, n.hostRef) for n in deployment.nodes] == [
         ("drv", "cpu1", "robot/cpu1"),
@@ -413,7 +416,7 @@ def test_best_effort_without_roots_warns(tmp_path):
 
     aadl = read_files([], include_library=True)
     warnings: list[Diagnostic] = []
-    project = aadl_to_rosmod(aadl, warnings=warnings)
+    project = aadl_to_rosmod(aadl, library=library_units(aadl), warnings=warnings)
     assert len(project.deployments) == 0
     assert any("no root system implementation" in w.message for w in warnings)
 
@@ -425,6 +428,181 @@ def test_best_effort_with_an_unknown_root_is_an_error():
     aadl = read_files([], include_library=True)
     with pytest.raises(TransformationError, match="cannot instantiate nowhere::sys.impl"):
         aadl_to_rosmod(aadl, roots=["nowhere::sys.impl"])
+
+
+# ------------------------------------------------------ the trace of AADL → ROSMOD, and names both ways
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "tracking"
+#: the best-effort rules that keep the AADL name (the others name components after classifiers,
+#: timers after threads, hardware models and deployments after the root's type)
+KEEPS_AADL_NAMES = {"host", "node", "thread", "port"}
+
+
+def _named(obj) -> str | None:
+    return getattr(obj, "name", None) if obj.eClass.findEStructuralFeature("name") else None
+
+
+def names_lost(back, forward, keeps=None) -> tuple[int, list[str]]:
+    """Follow ``back`` (an AADL → ROSMOD trace) then ``forward`` (ROSMOD → AADL): how many
+    ROSMOD elements were checked, and those whose name did not come back. Each ROSMOD element
+    must have its name among the AADL elements made from it (as their name, or in their
+    ``ROSMOD_Properties::Name`` where it is not an AADL identifier), and — for every rule when ``keeps``
+    is None, else for the rules in ``keeps`` — one of the AADL elements it came from must have a
+    namesake there too (the model read from files is named by the reader: it is not checked)."""
+    made: dict[int, set[str]] = {}
+    for link in forward.links:
+        for end in link.sources:
+            names = made.setdefault(id(end.object), set())
+            for target in link.targets:  # its AADL name, and the ROSMOD name it keeps when not one
+                names.update((_named(target.object), own_property(target.object, "ROSMOD_Properties::Name")))
+    checked, lost = 0, []
+    for link in back.links:
+        for end in link.targets:
+            names = made.get(id(end.object), set())
+            checked += 1
+            name = _named(end.object)
+            if name not in names and f"{name}_project" not in names:  # a project's package: <name>_project
+                lost.append(f"{link.rule}: {end.path} is not in {sorted(n for n in names if n)}")
+            origins = [s.object for s in link.sources if not model.is_a(s.object, "AadlModel")]
+            kept = any(_named(o) in names for o in origins)
+            if (keeps is None or link.rule in keeps) and origins and not kept:
+                lost.append(
+                    f"{link.rule}: {[s.path for s in link.sources]} -> {sorted(n for n in names if n)}"
+                )
+    return checked, lost
+
+
+def test_the_trace_of_aadl_to_rosmod(project, tmp_path):
+    result = rosmod_to_aadl(project)
+    back = aadl_to_rosmod_traced(result.model)
+    assert model.model_differences(project, back.project) == [] and back.warnings == []
+    assert back.trace.transformation == "aadl2rosmod"
+    index = tracing.TraceIndex(back.trace)
+    assert {
+        "project",
+        "package",
+        "message",
+        "component",
+        "port",
+        "timer",
+        "callback",
+        "hardware",
+        "host",
+    } <= set(index.rules())
+    assert {"deployment", "node", "component_instance", "interface"} <= set(index.rules()) or not any(
+        h.interfaces for s in project.systems for h in s.hosts
+    )
+    (link,) = index.links_from("/units[nav]/classifiers[Planner.impl]/subcomponents[tick]")
+    assert (link.rule, [e.path for e in link.targets]) == (
+        "timer",
+        ["/software[nav]/packages[nav]/components[Planner]/timers[tick]"],
+    )
+    (link,) = index.links_from("/units[nav]/classifiers[Planner.impl]/subcomponents[goal_sub_callback]")
+    assert (link.rule, [e.path for e in link.targets]) == (
+        "callback",
+        ["/software[nav]/packages[nav]/components[Planner]/ports[goal_sub]"],
+    )
+    (link,) = [link for link in back.trace.links if link.rule == "component_instance"]
+    assert [e.className for e in link.sources] == ["Subcomponent", "Subcomponent"]
+    assert [e.path for e in link.targets] == [
+        "/deployments[field test]/nodes[planner_node]/componentInstances[planner]"
+    ]
+    saved = tracing.save_trace(back.trace, tmp_path / "back.trace.json")
+    again = tracing.TraceIndex(tracing.load_trace(saved))
+    assert again.origin_keys("/software[nav]/packages[nav]/components[Planner]/timers[tick]") == [
+        "/units[nav]/classifiers[Planner.impl]/subcomponents[tick]"
+    ]
+    # the untraced conversion gives the same project
+    assert model.model_differences(back.project, aadl_to_rosmod(result.model)) == []
+
+
+def test_a_trace_is_given_as_a_model_not_as_a_file(project, tmp_path):
+    result = rosmod_to_aadl(project)
+    saved = tracing.save_trace(result.trace, tmp_path / "small.trace")
+    with pytest.raises(TransformationError, match="expected the trace"):
+        aadl_to_rosmod(result.model, trace=saved)
+
+
+@needs_reader
+def test_tracking_example_names_survive_both_ways(tmp_path, caplog):
+    """ROSMOD → AADL → ROSMOD gives the project back, and AADL → ROSMOD → AADL the names back,
+    through AADL text, with the traces of the three runs."""
+    caplog.set_level(logging.ERROR)
+    project = rosmod_text.read_project(EXAMPLE)
+    first, aadl = through_text(project, tmp_path)
+    back = aadl_to_rosmod_traced(aadl, trace=first.trace, library=library_units(aadl))
+    assert model.model_differences(project, back.project) == [] and back.warnings == []
+    again = rosmod_to_aadl(back.project)
+    checked, lost = names_lost(back.trace, again.trace)
+    assert checked > 30 and lost == []
+    assert [u.name for u in again.model.units] == [u.name for u in first.model.units]
+
+
+@needs_instantiate
+def test_library_tracking_application_names_survive_both_ways(caplog):
+    """Best effort: processes, processors, threads and ports keep their AADL names through ROSMOD
+    and back; every ROSMOD element keeps its name through AADL."""
+    from rosaadl.importers.aadl_text import read_files
+
+    caplog.set_level(logging.ERROR)
+    aadl = read_files([], include_library=True)
+    back = aadl_to_rosmod_traced(aadl, roots=["sys_tracking::tracking.impl"], library=library_units(aadl))
+    assert back.trace.transformation == "aadl2rosmod_best_effort"
+    paths = {e.path for link in back.trace.links if link.rule == "node" for e in link.sources}
+    assert (
+        "/instances[tracking_impl_Instance]/componentInstances[rem_trk_sw]/componentInstances[usbcam]"
+        in paths
+    )
+    again = rosmod_to_aadl(back.project)
+    checked, lost = names_lost(back.trace, again.trace, keeps=KEEPS_AADL_NAMES)
+    assert checked > 30 and lost == []
+
+
+@pytest.mark.parametrize("relative", CORPUS_PROJECTS)
+def test_corpus_names_survive_both_ways(corpus, relative, caplog):
+    caplog.set_level(logging.ERROR)
+    project = rosmod_text.read_project(corpus / "rosmod" / relative)
+    first = rosmod_to_aadl(project)
+    strip_names(first.model)
+    back = aadl_to_rosmod_traced(first.model, trace=first.trace)
+    assert model.model_differences(project, back.project) == []
+    checked, lost = names_lost(back.trace, rosmod_to_aadl(back.project).trace)
+    assert checked > 0 and lost == []
+
+
+@pytest.mark.parametrize("archive", WEBGME_ARCHIVES)
+def test_corpus_webgme_names_survive_both_ways(corpus, archive, caplog):
+    caplog.set_level(logging.ERROR)
+    for project in webgme_projects(str(corpus), archive):
+        first = rosmod_to_aadl(project)
+        strip_names(first.model)
+        back = aadl_to_rosmod_traced(first.model, trace=first.trace)
+        assert model.model_differences(project, back.project) == [], project.name
+        checked, lost = names_lost(back.trace, rosmod_to_aadl(back.project).trace)
+        assert checked > 0 and lost == [], project.name
+
+
+#: AADL models of the corpus that are not ROSMOD projects, with their roots
+CORPUS_AADL = {
+    "osate/aaxl2/ex-latency-normal/core-examples/flowlatencyexamples": (
+        "latency_distributed::latencytest.normal"
+    ),
+    "osate/aaxl2/ex-simple-thread-latency/core-examples/flowlatencyexamples": "SimpleThreadLatency::s.i",
+    "osate/aaxl2/ex-pullprotocols/latency-case-study": "pullprotocols::stub.i",
+}
+
+
+@needs_instantiate
+@pytest.mark.parametrize("relative", sorted(CORPUS_AADL))
+def test_corpus_aadl_names_survive_both_ways(corpus, relative, caplog):
+    from rosaadl.importers.aadl_text import read_files
+
+    caplog.set_level(logging.ERROR)
+    aadl = read_files([corpus / relative])
+    back = aadl_to_rosmod_traced(aadl, roots=[CORPUS_AADL[relative]], library=library_units(aadl))
+    assert back.project.deployments[0].nodes
+    checked, lost = names_lost(back.trace, rosmod_to_aadl(back.project).trace, keeps=KEEPS_AADL_NAMES)
+    assert checked > 0 and lost == []
 
 
 # ------------------------------------------------------------- files in, files out (the CLI's work)

@@ -22,13 +22,13 @@ from rosaadl.transforms.aadl_to_rosmod import aadl_to_rosmod
 from rosaadl.transforms.rosmod_to_aadl import (
     NameScope,
     aadl_identifier,
-    convert_project_files,
     library_unit_names,
     rosmod_to_aadl,
     seconds_to_time,
     time_to_seconds,
 )
 from rosaadl.units import Quantity
+from rosaadl.workflow.convert import convert_project_files
 
 _WRITER = importlib.util.find_spec("rosaadl.exporters.aadl_text") is not None
 _READER = _WRITER and importlib.util.find_spec("rosaadl.importers.aadl_text") is not None
