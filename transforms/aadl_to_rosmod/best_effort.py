@@ -297,8 +297,8 @@ def _system(ctx: Context, instance: EObject) -> tuple[EObject, EObject]:
 @_system.bind
 def _system_bind(ctx: Context, instance: EObject, system: EObject, deployment: EObject) -> None:
     components = _model.component_instances(instance, include_root=False)
-    add(system.hosts, ctx.resolve_all(components, "host"))
-    add(deployment.nodes, ctx.resolve_all(components, "node"))
+    add(system, "hosts", ctx.resolve_all(components, "host"))
+    add(deployment, "nodes", ctx.resolve_all(components, "node"))
 
 
 @_t.rule("ComponentInstance", name="host", when=_category("processor", in_node=False))
@@ -355,7 +355,7 @@ def _node(ctx: Context, process: EObject) -> EObject:
 @_node.bind
 def _node_bind(ctx: Context, process: EObject, node: EObject) -> None:
     threads, _ = state(ctx).members(process)
-    add(node.componentInstances, ctx.resolve_all(threads, "thread"))
+    add(node, "componentInstances", ctx.resolve_all(threads, "thread"))
 
 
 @_t.rule(

@@ -140,7 +140,7 @@ class ConventionState:
                     if kind == "hardware":
                         self.hardware[f"{unit.name}::{impl.name}".lower()] = unit
         self.cache: dict[tuple[str, int], Any] = {}  # per-classifier indexes the rules build once
-        self.placed: dict[int, tuple[str | None, str]] = {}  # subcomponent → (role, category)
+        self.placed: dict[int, tuple[str | None, str]] = {}  # member → (role of its holder, category)
 
     # -- the walk
     @staticmethod
@@ -218,13 +218,13 @@ def in_role(ctx: Context, member: EObject, role: str) -> bool:
     return state(ctx).roles.get(id(member.eContainer())) == role
 
 
-def placed(ctx: Context, sub: EObject) -> tuple[str | None, str]:
-    """(the role of the classifier holding a subcomponent, its category): what the guards of the
-    rules on subcomponents ask, read once per subcomponent."""
+def placed(ctx: Context, member: EObject) -> tuple[str | None, str]:
+    """(the role of what holds ``member``, its category) for a subcomponent, a feature or a
+    classifier (a package has no role): what the guards ask, read once per element."""
     st = ctx.options["state"]
-    found = st.placed.get(id(sub))
+    found = st.placed.get(id(member))
     if found is None:
-        found = st.placed[id(sub)] = (st.roles.get(id(sub.eContainer())), enum_name(sub.category))
+        found = st.placed[id(member)] = (st.roles.get(id(member.eContainer())), enum_name(member.category))
     return found
 
 
@@ -273,7 +273,7 @@ def _project_bind(ctx: Context, model: EObject, project: EObject) -> None:
     ):
         units = st.units.get(kind, [])
         if units:
-            add(getattr(owner, feature), ctx.resolve_all(units))
+            add(owner, feature, ctx.resolve_all(units))
 
 
 #: the categories of subcomponents each role maps (or skips without a word)

@@ -110,9 +110,9 @@ def _hardware_bind(ctx: Context, unit: EObject, system: EObject) -> None:
     if impl is None:
         return
     subs = list(impl.subcomponents)
-    add(system.hosts, ctx.resolve_all(subs, "host"))
-    add(system.networks, ctx.resolve_all(subs, "network"))
-    add(system.links, ctx.resolve_all(impl.connections, "link"))
+    add(system, "hosts", ctx.resolve_all(subs, "host"))
+    add(system, "networks", ctx.resolve_all(subs, "network"))
+    add(system, "links", ctx.resolve_all(impl.connections, "link"))
 
 
 def _member(category: str):
@@ -248,7 +248,7 @@ def _deployment_bind(ctx: Context, unit: EObject, deployment: EObject) -> None:
             if system is not None and system.name == deployment.systemName:
                 deployment.system = system
         nodes.extend(ctx.resolve(sub, "node"))
-    add(deployment.nodes, nodes)
+    add(deployment, "nodes", nodes)
 
 
 @_t.rule(
@@ -332,7 +332,7 @@ def _node_bind(ctx: Context, sub: EObject, node: EObject) -> None:
         node.host = ctx.resolve(plan.host, "host")[0]
         if node.hostRef is None:
             node.hostRef = f"{ctx.resolve(plan.hardware, 'hardware')[0].name}/{node.host.name}"
-    add(node.componentInstances, [ctx.lazy(_component_instance, sub, inner) for inner in plan.instances])
+    add(node, "componentInstances", [ctx.lazy(_component_instance, sub, inner) for inner in plan.instances])
 
 
 @_t.rule("Subcomponent", name="component_instance", lazy=True)
@@ -344,7 +344,7 @@ def _component_instance(ctx: Context, process: EObject, sub: EObject) -> EObject
     if _component_type(ctx, sub) is None:
         st.warn(f"thread group {sub.name}: {sub.classifier} is not a component of the project", sub)
     inst.logging.extend(settings(sub, fwd.LOGGING))
-    add(inst.portInstances, _port_instances(sub))
+    add(inst, "portInstances", _port_instances(sub))
     inst.properties.extend(settings(sub))
     return inst
 

@@ -58,11 +58,11 @@ def new(class_name: str, /, **values: Any) -> EObject:
     return _model.new(f"rosmod.{class_name}", **{k: v for k, v in values.items() if v is not None})
 
 
-def add(objects: Any, items: list[EObject]) -> None:
-    """Add ``items`` to a many-valued feature; nothing at all (not even an empty change, which
-    pyecore would record as set) when there are none."""
+def add(owner: EObject, feature: str, items: list[EObject]) -> None:
+    """Add ``items`` to a many-valued feature of ``owner``; nothing at all when there are none
+    (pyecore would record even an empty change, and make the list on first read)."""
     if items:
-        objects.extend(items)
+        getattr(owner, feature).extend(items)
 
 
 def set_given(obj: EObject, **values: Any) -> None:

@@ -16,7 +16,7 @@ from rosaadl.properties import own_property
 from rosaadl.transforms import rosmod_to_aadl as fwd
 from rosaadl.transforms.engine import Context
 
-from .convention import COMPONENT, COMPONENT_IMPL, CONVENTION, in_role, kind_is, placed, state
+from .convention import COMPONENT, COMPONENT_IMPL, CONVENTION, kind_is, placed, state
 from .reading import add, enum_name, integer, new, scheduling_scheme, seconds, set_given, settings, text
 
 __all__ = ["port_class"]
@@ -41,9 +41,16 @@ def _in_software(ctx: Context, classifier: EObject) -> bool:
 
 
 def _typed(category: str, prop: str):
-    return lambda ctx, c: (
-        _in_software(ctx, c) and enum_name(c.category) == category and text(c, prop) is not None
-    )
+    return lambda ctx, c: _in_software(ctx, c) and placed(ctx, c)[1] == category and text(c, prop) is not None
+
+
+def _port_class(ctx: Context, feature: EObject) -> str | None:
+    """:func:`port_class`, read once per feature."""
+    cache = state(ctx).cache
+    key = ("port", id(feature))
+    if key not in cache:
+        cache[key] = port_class(feature)
+    return cache[key]
 
 
 # --------------------------------------------------------------------------- packages
@@ -59,9 +66,9 @@ def _package(ctx: Context, unit: EObject) -> EObject:
 @_package.bind
 def _package_bind(ctx: Context, unit: EObject, package: EObject) -> None:
     classifiers = list(unit.classifiers)
-    add(package.messages, ctx.resolve_all(classifiers, "message"))
-    add(package.services, ctx.resolve_all(classifiers, "service"))
-    add(package.components, ctx.resolve_all(state(ctx).thread_groups(unit), "component"))
+    add(package, "messages", ctx.resolve_all(classifiers, "message"))
+    add(package, "services", ctx.resolve_all(classifiers, "service"))
+    add(package, "components", ctx.resolve_all(state(ctx).thread_groups(unit), "component"))
 
 
 def _package_name(ctx: Context, classifier: EObject) -> str:
@@ -105,7 +112,7 @@ def _service(ctx: Context, classifier: EObject) -> EObject:
     "ComponentType",
     name="unmapped_classifier",
     when=lambda ctx, c: (
-        _in_software(ctx, c) and enum_name(c.category) not in ("data", "subprogram", "threadGroup", "thread")
+        _in_software(ctx, c) and placed(ctx, c)[1] not in ("data", "subprogram", "threadGroup", "thread")
     ),
 )
 def _unmapped_classifier(ctx: Context, classifier: EObject) -> None:
@@ -135,10 +142,10 @@ def _component(ctx: Context, ctype: EObject) -> EObject:
 
 @_component.bind
 def _component_bind(ctx: Context, ctype: EObject, comp: EObject) -> None:
-    add(comp.ports, ctx.resolve_all(ctype.features, "port"))
+    add(comp, "ports", ctx.resolve_all(ctype.features, "port"))
     impl = state(ctx).implementation[id(ctype)]
     if impl is not None:
-        add(comp.timers, ctx.resolve_all(impl.subcomponents, "timer"))
+        add(comp, "timers", ctx.resolve_all(impl.subcomponents, "timer"))
 
 
 def _port_type(ctx: Context, feature: EObject) -> str | None:
@@ -162,10 +169,10 @@ def _port_type(ctx: Context, feature: EObject) -> str | None:
 @_t.rule(
     "Feature",
     name="port",
-    when=lambda ctx, f: in_role(ctx, f, COMPONENT) and port_class(f) is not None,
+    when=lambda ctx, f: placed(ctx, f)[0] == COMPONENT and _port_class(ctx, f) is not None,
 )
 def _port(ctx: Context, feature: EObject) -> EObject:
-    cls = port_class(feature)
+    cls = _port_class(ctx, feature)
     port = new(cls, name=state(ctx).name(feature), type=_port_type(ctx, feature))
     if cls == "Publisher":
         latching = own_property(feature, fwd.LATCHING)
@@ -175,7 +182,9 @@ def _port(ctx: Context, feature: EObject) -> EObject:
 
 
 @_t.rule(
-    "Feature", name="not_a_port", when=lambda ctx, f: in_role(ctx, f, COMPONENT) and port_class(f) is None
+    "Feature",
+    name="not_a_port",
+    when=lambda ctx, f: placed(ctx, f)[0] == COMPONENT and _port_class(ctx, f) is None,
 )
 def _not_a_port(ctx: Context, feature: EObject) -> None:
     owner = feature.eContainer()
@@ -195,7 +204,7 @@ def _served(ctx: Context, impl: EObject) -> dict[str, EObject]:
         return found
     ports: dict[str, EObject] = {}
     for feature in st.component_of[id(impl)].features:
-        if port_class(feature) is not None:
+        if _port_class(ctx, feature) is not None:
             ports[feature.name.lower()] = feature
     served: dict[str, EObject] = {}
     for conn in impl.connections:
@@ -207,7 +216,7 @@ def _served(ctx: Context, impl: EObject) -> dict[str, EObject]:
                 served[destination.partition(".")[0].lower()] = port
         elif kind == "accessConnection" and "." in source and "." not in destination:
             port = ports.get(destination.lower())
-            if port is not None and port_class(port) == "Server":
+            if port is not None and _port_class(ctx, port) == "Server":
                 served[source.partition(".")[0].lower()] = port
     st.cache[key] = served
     return served
