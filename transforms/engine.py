@@ -17,8 +17,9 @@ What it offers (after ATL, QVT-o and Epsilon ETL)::
 * rules are plain functions with an explicit :class:`Context` argument (no injected globals);
   a create part returns its targets (an object, a tuple of them, or None for none);
 * most-specific dispatch: a rule on ``Subscriber`` wins over a rule on ``CallbackPort`` for a
-  subscriber; ``when=`` guards choose between rules on one class; two equally specific rules
-  that both match are an error, not a coin toss;
+  subscriber; ``when=`` guards choose between rules on one class, and ``where=(key, value)``
+  does so for the rules that share a key (asked once per object: where an element sits, its
+  category); two equally specific rules that both match are an error, not a coin toss;
 * ``lazy=True`` rules run only when asked (``ctx.lazy(rule, *sources)``), and are *unique*: the
   same sources give the same target — one rule can so map a pair of elements (a node and one of
   its component instances) where a matched rule sees one;
@@ -37,7 +38,7 @@ What it offers (after ATL, QVT-o and Epsilon ETL)::
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Hashable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -53,6 +54,7 @@ __all__ = ["Rule", "Transformation", "Context", "TransformationResult", "source_
 log = logging.getLogger(__name__)
 
 Guard = Callable[["Context", EObject], bool]
+Key = Callable[["Context", EObject], Hashable]
 Walk = Callable[[EObject], Iterable[EObject]]
 
 
@@ -84,6 +86,7 @@ class Rule:
     source: EClass
     create: Callable[..., Any]
     when: Guard | None = None
+    where: tuple[Key, Hashable] | None = None
     lazy: bool = False
     bind_fn: Callable[..., Any] | None = None
 
@@ -93,10 +96,10 @@ class Rule:
         return fn
 
     def matches(self, ctx: Context, obj: EObject) -> bool:
-        if self.when is None:
-            return True
         try:
-            return bool(self.when(ctx, obj))
+            if self.where is not None and self.where[0](ctx, obj) != self.where[1]:
+                return False
+            return self.when is None or bool(self.when(ctx, obj))
         except RosaadlError:
             raise
         except Exception as exc:
@@ -173,6 +176,21 @@ class TransformationResult:
     context: Context | None = None  #: for ``context.resolve`` after the run
 
 
+class _Dispatch:
+    """The rules that may apply to the objects of one class: those without a ``where`` key, and
+    per key function those of each value."""
+
+    def __init__(self, rules: list[Rule]) -> None:
+        self.rules = rules
+        self.unkeyed = [r for r in rules if r.where is None]
+        keyed: dict[Key, dict[Hashable, list[Rule]]] = {}
+        for rule in rules:
+            if rule.where is not None:
+                key, value = rule.where
+                keyed.setdefault(key, {}).setdefault(value, []).append(rule)
+        self.keyed = list(keyed.items())
+
+
 class Transformation:
     """A named set of rules applied to the objects of one or more source models."""
 
@@ -180,7 +198,7 @@ class Transformation:
         self.name = name
         self._rules: list[Rule] = []
         self._by_name: dict[str, Rule] = {}
-        self._dispatch_cache: dict[EClass, list[Rule]] = {}
+        self._dispatch_cache: dict[EClass, _Dispatch] = {}
 
     # -- declaration --------------------------------------------------------------------------
     def rule(
@@ -188,17 +206,23 @@ class Transformation:
         source: str | EClass,
         *,
         when: Guard | None = None,
+        where: tuple[Key, Hashable] | None = None,
         lazy: bool = False,
         name: str | None = None,
     ) -> Callable[[Callable[..., Any]], Rule]:
-        """Decorator declaring a rule on ``source`` objects (a metamodel class or its name)."""
+        """Decorator declaring a rule on ``source`` objects (a metamodel class or its name).
+
+        ``when`` is a guard; ``where=(key, value)`` a guard of the form ``key(ctx, obj) ==
+        value``, which rules on one class can share: the engine asks ``key`` once per object
+        and goes straight to the rules of its value.
+        """
         eclass = model.eclass_of(source)
 
         def decorate(fn: Callable[..., Any]) -> Rule:
             rule_name = name or fn.__name__
             if rule_name in self._by_name:
                 raise ValueError(f"transformation {self.name}: rule {rule_name!r} is declared twice")
-            created = Rule(name=rule_name, source=eclass, create=fn, when=when, lazy=lazy)
+            created = Rule(name=rule_name, source=eclass, create=fn, when=when, where=where, lazy=lazy)
             self._rules.append(created)
             self._by_name[rule_name] = created
             self._dispatch_cache.clear()
@@ -215,23 +239,27 @@ class Transformation:
             raise TransformationError(f"no rule named {rule!r} in transformation {self.name}") from None
 
     # -- dispatch -----------------------------------------------------------------------------
-    def _candidates(self, eclass: EClass) -> list[Rule]:
+    def _dispatch(self, eclass: EClass) -> _Dispatch:
         cached = self._dispatch_cache.get(eclass)
         if cached is None:
             cls = eclass.python_class
-            cached = [r for r in self._rules if not r.lazy and issubclass(cls, r.source.python_class)]
-            self._dispatch_cache[eclass] = cached
+            rules = [r for r in self._rules if not r.lazy and issubclass(cls, r.source.python_class)]
+            cached = self._dispatch_cache[eclass] = _Dispatch(rules)
         return cached
 
     def select(self, ctx: Context, obj: EObject) -> Rule | None:
-        """The most specific non-lazy rule whose class and guard match ``obj`` (None if none)."""
-        candidates = self._candidates(obj.eClass)
+        """The most specific non-lazy rule whose class and guards match ``obj`` (None if none)."""
+        dispatch = self._dispatch(obj.eClass)
         try:
-            matching = [r for r in candidates if r.when is None or r.when(ctx, obj)]
+            matching = [r for r in dispatch.unkeyed if r.when is None or r.when(ctx, obj)]
+            for key, by_value in dispatch.keyed:
+                for r in by_value.get(key(ctx, obj), ()):
+                    if r.when is None or r.when(ctx, obj):
+                        matching.append(r)
         except RosaadlError:
             raise
         except Exception:
-            matching = [r for r in candidates if r.matches(ctx, obj)]  # names the guard that failed
+            matching = [r for r in dispatch.rules if r.matches(ctx, obj)]  # names the guard that failed
         if len(matching) < 2:
             return matching[0] if matching else None
         # drop every rule whose source class is a strict supertype of another matching rule's

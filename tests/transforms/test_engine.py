@@ -96,6 +96,33 @@ def test_guard_excludes_objects() -> None:
     assert "tick" not in {f.name for f in _made(result, comp).features}
 
 
+def test_rules_keyed_by_where_share_one_question_per_object() -> None:
+    software, comp = _component()
+    t = Transformation("keyed")
+    asked = []
+
+    def kind(ctx, port):
+        asked.append(port.name)
+        return port.eClass.name
+
+    @t.rule("rosmod.Port", where=(kind, "Publisher"))
+    def publisher(ctx, src):
+        return _feature(src, "out")
+
+    @t.rule("rosmod.Port", where=(kind, "Subscriber"), when=lambda ctx, p: p.priority == 50)
+    def urgent_subscriber(ctx, src):
+        return _feature(src, "urgent")
+
+    @t.rule("rosmod.Port", where=(kind, "Subscriber"), when=lambda ctx, p: p.priority != 50)
+    def subscriber(ctx, src):
+        return _feature(src, "in")
+
+    result = t.run(software)
+    made = {f.name: f.classifier for f in result.context.resolve_all(comp.ports)}
+    assert made == {"image_in": "urgent", "point_out": "out"}  # no rule for the server
+    assert asked == ["image_in", "point_out", "reset"]  # once per port, for the three rules
+
+
 def test_ambiguous_rules_are_an_error_naming_both() -> None:
     software, _ = _component()
     t = _to_aadl()

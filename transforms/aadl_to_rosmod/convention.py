@@ -19,7 +19,7 @@ earlier one made (a callback thread, the port it serves) finds it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 from pyecore.ecore import EObject
@@ -48,9 +48,9 @@ __all__ = [
     "ConventionState",
     "is_rosmod_convention",
     "state",
-    "in_role",
+    "unit_kind",
+    "holder_role",
     "placed",
-    "kind_is",
     "COMPONENT",
     "COMPONENT_IMPL",
     "HARDWARE",
@@ -213,14 +213,20 @@ def state(ctx: Context) -> ConventionState:
     return ctx.options["state"]
 
 
-def in_role(ctx: Context, member: EObject, role: str) -> bool:
-    """Is ``member`` held by a classifier the walk visits in ``role``?"""
-    return state(ctx).roles.get(id(member.eContainer())) == role
+def unit_kind(ctx: Context, unit: EObject) -> str | None:
+    """The rules' key on packages: the ``Unit_Kind`` of a package (``foreign``: none, and not the
+    library's)."""
+    return ctx.options["state"].kind.get(id(unit))
+
+
+def holder_role(ctx: Context, member: EObject) -> str | None:
+    """The rules' key on features and connections: the role of the classifier holding them."""
+    return ctx.options["state"].roles.get(id(member.eContainer()))
 
 
 def placed(ctx: Context, member: EObject) -> tuple[str | None, str]:
-    """(the role of what holds ``member``, its category) for a subcomponent, a feature or a
-    classifier (a package has no role): what the guards ask, read once per element."""
+    """The rules' key on subcomponents and classifiers: (the role of what holds ``member``, its
+    category); a package has no role. Read once per element."""
     st = ctx.options["state"]
     found = st.placed.get(id(member))
     if found is None:
@@ -231,12 +237,7 @@ def placed(ctx: Context, member: EObject) -> tuple[str | None, str]:
 # --------------------------------------------------------------------------- the project
 
 
-def kind_is(kind: str) -> Callable[[Context, EObject], bool]:
-    """The guard of the rules on the packages of one ``Unit_Kind`` (``foreign``: none)."""
-    return lambda ctx, unit: state(ctx).kind.get(id(unit)) == kind
-
-
-@_t.rule("AadlPackage", name="foreign_package", when=kind_is("foreign"))
+@_t.rule("AadlPackage", name="foreign_package", where=(unit_kind, "foreign"))
 def _foreign_package(ctx: Context, unit: EObject) -> None:
     state(ctx).warn(f"package {unit.name} is not part of a ROSMOD project (no Unit_Kind); skipped", unit)
 

@@ -19,7 +19,7 @@ from rosaadl.properties import Reference, own_property, property_name_matches, p
 from rosaadl.transforms import rosmod_to_aadl as fwd
 from rosaadl.transforms.engine import Context
 
-from .convention import CONVENTION, DEPLOYMENT, HARDWARE, in_role, kind_is, placed, state
+from .convention import CONVENTION, DEPLOYMENT, HARDWARE, holder_role, placed, state, unit_kind
 from .reading import (
     add,
     enum_name,
@@ -99,7 +99,7 @@ def _platform_model(ctx: Context, unit: EObject, kind: str, **values: str | None
     return made
 
 
-@_t.rule("AadlPackage", name="hardware", when=kind_is("hardware"))
+@_t.rule("AadlPackage", name="hardware", where=(unit_kind, "hardware"))
 def _hardware(ctx: Context, unit: EObject) -> EObject:
     return _platform_model(ctx, unit, "Hardware")
 
@@ -115,11 +115,7 @@ def _hardware_bind(ctx: Context, unit: EObject, system: EObject) -> None:
     add(system, "links", ctx.resolve_all(impl.connections, "link"))
 
 
-def _member(category: str):
-    return lambda ctx, sub: placed(ctx, sub) == (HARDWARE, category)
-
-
-@_t.rule("Subcomponent", name="host", when=_member("processor"))
+@_t.rule("Subcomponent", name="host", where=(placed, (HARDWARE, "processor")))
 def _host(ctx: Context, sub: EObject) -> EObject:
     st = state(ctx)
     host = new("Host", name=st.name(sub))
@@ -147,7 +143,7 @@ def _interface(ctx: Context, sub: EObject, feature: EObject) -> EObject:
     return new("Interface", name=state(ctx).name(feature))
 
 
-@_t.rule("Subcomponent", name="network", when=_member("bus"))
+@_t.rule("Subcomponent", name="network", where=(placed, (HARDWARE, "bus")))
 def _network(ctx: Context, sub: EObject) -> EObject:
     st = state(ctx)
     ptype = st.index.find(sub.classifier, sub.eContainer())
@@ -166,7 +162,7 @@ def _is_link(ctx: Context, conn: EObject) -> bool:
     )
 
 
-@_t.rule("Connection", name="link", when=lambda ctx, c: in_role(ctx, c, HARDWARE) and _is_link(ctx, c))
+@_t.rule("Connection", name="link", where=(holder_role, HARDWARE), when=_is_link)
 def _link(ctx: Context, conn: EObject) -> EObject:
     return new("Link", name=state(ctx).name(conn), ip=text(conn, fwd.IP_ADDRESS))
 
@@ -180,7 +176,10 @@ def _link_bind(ctx: Context, conn: EObject, link: EObject) -> None:
 
 
 @_t.rule(
-    "Connection", name="not_a_link", when=lambda ctx, c: in_role(ctx, c, HARDWARE) and not _is_link(ctx, c)
+    "Connection",
+    name="not_a_link",
+    where=(holder_role, HARDWARE),
+    when=lambda ctx, c: not _is_link(ctx, c),
 )
 def _not_a_link(ctx: Context, conn: EObject) -> None:
     if enum_name(conn.kind) != "accessConnection":
@@ -230,7 +229,7 @@ def _deployed(ctx: Context, impl: EObject) -> _Deployed:
     return found
 
 
-@_t.rule("AadlPackage", name="deployment", when=kind_is("deployment"))
+@_t.rule("AadlPackage", name="deployment", where=(unit_kind, "deployment"))
 def _deployment(ctx: Context, unit: EObject) -> EObject:
     return _platform_model(ctx, unit, "Deployment", systemName=text(unit, fwd.SYSTEM_NAME))
 
@@ -254,7 +253,8 @@ def _deployment_bind(ctx: Context, unit: EObject, deployment: EObject) -> None:
 @_t.rule(
     "Subcomponent",
     name="unknown_hardware",
-    when=lambda ctx, s: placed(ctx, s) == (DEPLOYMENT, "system") and _hardware_model(ctx, s) is None,
+    where=(placed, (DEPLOYMENT, "system")),
+    when=lambda ctx, s: _hardware_model(ctx, s) is None,
 )
 def _unknown_hardware(ctx: Context, sub: EObject) -> None:
     state(ctx).warn(f"system {sub.name} is not a hardware model of the project", sub)
@@ -280,7 +280,7 @@ class _NodePlan:
 @_t.rule(
     "Subcomponent",
     name="node",
-    when=lambda ctx, s: placed(ctx, s) == (DEPLOYMENT, "process"),
+    where=(placed, (DEPLOYMENT, "process")),
 )
 def _node(ctx: Context, sub: EObject) -> EObject:
     st = state(ctx)

@@ -16,7 +16,7 @@ from rosaadl.properties import own_property
 from rosaadl.transforms import rosmod_to_aadl as fwd
 from rosaadl.transforms.engine import Context
 
-from .convention import COMPONENT, COMPONENT_IMPL, CONVENTION, kind_is, placed, state
+from .convention import COMPONENT, COMPONENT_IMPL, CONVENTION, holder_role, placed, state, unit_kind
 from .reading import add, enum_name, integer, new, scheduling_scheme, seconds, set_given, settings, text
 
 __all__ = ["port_class"]
@@ -40,8 +40,9 @@ def _in_software(ctx: Context, classifier: EObject) -> bool:
     return state(ctx).kind.get(id(classifier.eContainer())) == "software"
 
 
-def _typed(category: str, prop: str):
-    return lambda ctx, c: _in_software(ctx, c) and placed(ctx, c)[1] == category and text(c, prop) is not None
+def _software(ctx: Context, classifier: EObject) -> str | None:
+    """The rules' key on classifiers: the category of a classifier of a software package."""
+    return placed(ctx, classifier)[1] if _in_software(ctx, classifier) else None
 
 
 def _port_class(ctx: Context, feature: EObject) -> str | None:
@@ -56,7 +57,7 @@ def _port_class(ctx: Context, feature: EObject) -> str | None:
 # --------------------------------------------------------------------------- packages
 
 
-@_t.rule("AadlPackage", name="package", when=kind_is("software"))
+@_t.rule("AadlPackage", name="package", where=(unit_kind, "software"))
 def _package(ctx: Context, unit: EObject) -> EObject:
     package = new("Package", name=state(ctx).name(unit))
     package.properties.extend(settings(unit))
@@ -98,12 +99,22 @@ def _interface_type(ctx: Context, classifier: EObject, class_name: str) -> EObje
     return made
 
 
-@_t.rule("ComponentType", name="message", when=_typed("data", fwd.MESSAGE_TYPE))
+@_t.rule(
+    "ComponentType",
+    name="message",
+    where=(_software, "data"),
+    when=lambda ctx, c: text(c, fwd.MESSAGE_TYPE) is not None,
+)
 def _message(ctx: Context, classifier: EObject) -> EObject:
     return _interface_type(ctx, classifier, "Message")
 
 
-@_t.rule("ComponentType", name="service", when=_typed("subprogram", fwd.SERVICE_TYPE))
+@_t.rule(
+    "ComponentType",
+    name="service",
+    where=(_software, "subprogram"),
+    when=lambda ctx, c: text(c, fwd.SERVICE_TYPE) is not None,
+)
 def _service(ctx: Context, classifier: EObject) -> EObject:
     return _interface_type(ctx, classifier, "Service")
 
@@ -111,9 +122,7 @@ def _service(ctx: Context, classifier: EObject) -> EObject:
 @_t.rule(
     "ComponentType",
     name="unmapped_classifier",
-    when=lambda ctx, c: (
-        _in_software(ctx, c) and placed(ctx, c)[1] not in ("data", "subprogram", "threadGroup", "thread")
-    ),
+    when=lambda ctx, c: _software(ctx, c) not in (None, "data", "subprogram", "threadGroup", "thread"),
 )
 def _unmapped_classifier(ctx: Context, classifier: EObject) -> None:
     state(ctx).warn(
@@ -125,7 +134,7 @@ def _unmapped_classifier(ctx: Context, classifier: EObject) -> None:
 # --------------------------------------------------------------------------- components
 
 
-@_t.rule("ComponentType", name="component", when=lambda ctx, c: state(ctx).roles.get(id(c)) == COMPONENT)
+@_t.rule("ComponentType", name="component", where=(_software, "threadGroup"))
 def _component(ctx: Context, ctype: EObject) -> EObject:
     st = state(ctx)
     comp = new(
@@ -169,7 +178,8 @@ def _port_type(ctx: Context, feature: EObject) -> str | None:
 @_t.rule(
     "Feature",
     name="port",
-    when=lambda ctx, f: placed(ctx, f)[0] == COMPONENT and _port_class(ctx, f) is not None,
+    where=(holder_role, COMPONENT),
+    when=lambda ctx, f: _port_class(ctx, f) is not None,
 )
 def _port(ctx: Context, feature: EObject) -> EObject:
     cls = _port_class(ctx, feature)
@@ -184,7 +194,8 @@ def _port(ctx: Context, feature: EObject) -> EObject:
 @_t.rule(
     "Feature",
     name="not_a_port",
-    when=lambda ctx, f: placed(ctx, f)[0] == COMPONENT and _port_class(ctx, f) is None,
+    where=(holder_role, COMPONENT),
+    when=lambda ctx, f: _port_class(ctx, f) is None,
 )
 def _not_a_port(ctx: Context, feature: EObject) -> None:
     owner = feature.eContainer()
@@ -223,14 +234,20 @@ def _served(ctx: Context, impl: EObject) -> dict[str, EObject]:
 
 
 def _serves(ctx: Context, sub: EObject) -> EObject | None:
-    """The port feature a thread of a component's implementation serves (None: a timer)."""
-    return _served(ctx, sub.eContainer()).get(sub.name.lower())
+    """The port feature a thread of a component's implementation serves (None: a timer), read
+    once per thread."""
+    cache = state(ctx).cache
+    key = ("serves", id(sub))
+    if key not in cache:
+        cache[key] = _served(ctx, sub.eContainer()).get(sub.name.lower())
+    return cache[key]
 
 
 @_t.rule(
     "Subcomponent",
     name="timer",
-    when=lambda ctx, s: placed(ctx, s) == (COMPONENT_IMPL, "thread") and _serves(ctx, s) is None,
+    where=(placed, (COMPONENT_IMPL, "thread")),
+    when=lambda ctx, s: _serves(ctx, s) is None,
 )
 def _timer(ctx: Context, sub: EObject) -> EObject:
     return new(
@@ -246,7 +263,8 @@ def _timer(ctx: Context, sub: EObject) -> EObject:
 @_t.rule(
     "Subcomponent",
     name="callback",
-    when=lambda ctx, s: placed(ctx, s) == (COMPONENT_IMPL, "thread") and _serves(ctx, s) is not None,
+    where=(placed, (COMPONENT_IMPL, "thread")),
+    when=lambda ctx, s: _serves(ctx, s) is not None,
 )
 def _callback(ctx: Context, sub: EObject) -> list[EObject]:
     """The port the thread serves (made before it: the walk visits features first) gets the
