@@ -15,8 +15,6 @@ from __future__ import annotations
 import logging
 import os
 from collections.abc import Sequence
-from functools import cache
-from importlib import resources
 from pathlib import Path
 
 from pyecore.ecore import EObject
@@ -82,26 +80,16 @@ def convert_project_files(
     return [target for target, _ in outputs]
 
 
-@cache
-def _library_folder() -> Path | None:
-    try:
-        return Path(str(resources.files("rosaadl.library"))).resolve()
-    except (ModuleNotFoundError, TypeError):  # pragma: no cover - the library is package data
-        return None
-
-
 def library_units(model: EObject) -> list[EObject]:
-    """The units of ``model`` read from rosaadl's component library (by their ``sourceFile``)."""
-    folder = _library_folder()
-    if folder is None:
-        return []
+    """The units of ``model`` read from the component library's files (``library_files``)."""
+    from rosaadl.importers.aadl_text import library_files
+
+    files = {str(path.resolve()) for path in library_files()}
     found = []
     for unit in model.units:
         source = getattr(unit, "sourceFile", None)
-        if not source:
-            continue
         try:
-            if folder in Path(source).resolve().parents:
+            if source and str(Path(source).resolve()) in files:
                 found.append(unit)
         except OSError:  # pragma: no cover - a path the OS cannot resolve
             continue
