@@ -151,7 +151,7 @@ class Context:
         """Apply a lazy rule to ``sources``; the same sources always give the same application.
         Its first target (None when it made none); ``resolve`` gives them all."""
         chosen = self.transformation.get_rule(rule)
-        key = (chosen.name, tuple(id(s) for s in sources))
+        key = (chosen.name, tuple(map(id, sources)))
         app = self._lazy_cache.get(key)
         if app is None:
             current = self._current_rule

@@ -354,10 +354,20 @@ def _component_instance_bind(ctx: Context, process: EObject, sub: EObject, inst:
     ctype = _component_type(ctx, sub)
     if ctype is None:
         return
+    inst.component, reference = _component(ctx, ctype)
+    inst.componentRef = text(sub, fwd.COMPONENT_REF) or reference
+
+
+def _component(ctx: Context, ctype: EObject) -> tuple[EObject, str]:
+    """The component made from a thread group type, and its reference ``package/component``."""
     st = state(ctx)
-    inst.component = comp = ctx.resolve(ctype, "component")[0]
-    package = ctx.resolve(st.unit_of(ctype), "package")[0]
-    inst.componentRef = text(sub, fwd.COMPONENT_REF) or f"{package.name}/{comp.name}"
+    key = ("component", id(ctype))
+    found = st.cache.get(key)
+    if found is None:
+        comp = ctx.resolve(ctype, "component")[0]
+        package = ctx.resolve(st.unit_of(ctype), "package")[0]
+        found = st.cache[key] = (comp, f"{package.name}/{comp.name}")
+    return found
 
 
 def _component_type(ctx: Context, sub: EObject) -> EObject | None:
