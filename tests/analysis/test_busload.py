@@ -22,7 +22,7 @@ from instance_builders import component, num, pa, ref
 
 from rosaadl import model
 from rosaadl.analysis.busload import analyze_bus_load, java_double, message_rate, port_loads
-from rosaadl.analysis.resources import PropertyReader
+from rosaadl.analysis.instance_values import PropertyReader
 
 new = model.new
 

@@ -14,12 +14,11 @@ from pathlib import Path
 
 import pytest
 
+from rosaadl.analysis.partitioning import partition, partition_taskset
 from rosaadl.analysis.schedulability import (
     analyze_schedulability,
     deadline_monotonic_priorities,
     non_preemptive_rm_failures,
-    partition,
-    partition_taskset,
     rate_monotonic_priorities,
 )
 from rosaadl.analysis.simulation import simulate

@@ -9,15 +9,10 @@ import pytest
 from instance_builders import component, num, pa, ref, span
 
 from rosaadl import model
+from rosaadl.analysis.budgets import analyze_budgets
 from rosaadl.analysis.busload import port_loads
-from rosaadl.analysis.resources import (
-    PropertyReader,
-    SystemMode,
-    analyze_budgets,
-    analyze_resources,
-    bound_processor,
-    system_modes,
-)
+from rosaadl.analysis.instance_values import PropertyReader, SystemMode, bound_processor, system_modes
+from rosaadl.analysis.resources import analyze_resources
 from rosaadl.errors import ModelError
 
 new = model.new
