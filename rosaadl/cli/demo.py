@@ -31,7 +31,7 @@ import importlib
 import sys
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -405,7 +405,7 @@ def _search(run: DemoRun, state: dict[str, Any]) -> str:
         taken.add(name.lower())
         proposal = propose_binding(state["project"], d.bound, d.instance, package_name=name)
         d.proposal = proposal
-        d.report = replace(d.report, deployment=proposal.search)
+        d.report = d.report.with_result("deploy", proposal.search)
         if proposal.bound is None:
             best = _percent(float(proposal.search.max_load * 100))
             parts.append(f"{d.name}: no binding passes (best max core {best})")
