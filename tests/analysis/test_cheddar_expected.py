@@ -229,7 +229,8 @@ def test_best_fit_partition(corpus):
 
 
 def _import(corpus: Path, name: str) -> TaskSet:
-    cheddar = pytest.importorskip("rosaadl.importers.cheddar", reason="the Cheddar importer is not available")
+    from rosaadl.importers import cheddar
+
     return taskset_from_instance(cheddar.load_cheddar(corpus / "cheddar" / name))
 
 
