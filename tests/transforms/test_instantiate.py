@@ -459,6 +459,8 @@ def test_unknown_root_and_type_root():
     assert list(ws.instances) == []
     with pytest.raises(UsageError):
         instantiate(ws, "Pkg::sys.i", compatibility="osate-1")
+    with pytest.raises(UsageError, match="not 42"):
+        instantiate(ws, 42)
     assert instantiate(ws, "SYS.I").classifier == "Pkg::sys.i"  # unqualified, declared once
     assert COMPATIBILITY_MODES == ("current", "osate-2.0")
 

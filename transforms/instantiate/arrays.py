@@ -38,7 +38,7 @@ def array_sizes(st: Instantiator, dims: Iterable[str], element: EObject, path: A
             st.warn("array dimension without a size; one element instantiated", path, element)
             sizes.append(1)
             continue
-        if text.isdigit():
+        if text.isdecimal():
             sizes.append(int(text))
             continue
         const = st.resolver.constant(text, element)

@@ -230,18 +230,11 @@ def _append(
                 finalize(st, st.root, info, target)
         elif to_ref.end_kind == "internal":
             st.warn(f"connection to {to_ref.end} could not be instantiated", component_path(ci), conn.decl)
-        elif to_ref.category == "parameter":
+        elif to_ref.category == "parameter" or dst_empty:
             holder = to_ci or ci
             target = holder.feature(to_ref.end)
             if target is None:
                 st.warn(f"destination feature {to_ref.end} not found", component_path(holder), conn.decl)
-            else:
-                info.complete = True
-                finalize(st, ci, info, target)
-        elif dst_empty:
-            target = to_ci.feature(to_ref.end)
-            if target is None:
-                st.warn(f"destination feature {to_ref.end} not found", component_path(to_ci), conn.decl)
             else:
                 info.complete = True
                 finalize(st, ci, info, target)

@@ -38,9 +38,7 @@ def finalize(st: Instantiator, parent: ComponentMirror | None, info: ConnectionI
             if up_fi.parent is dst_fi:
                 dst_fi = up_fi
             elif up_fi.parent is not None and _fg_inverse(st, up_fi.parent, dst_fi) and dst_fi.children:
-                position = _position(up_fi)
-                if 0 <= position < len(dst_fi.children):
-                    dst_fi = dst_fi.children[position]
+                dst_fi = _at_same_position(dst_fi, up_fi)
         try:
             if isinstance(info.src, FeatureMirror):
                 if not info.src.children and not dst_fi.children:
@@ -96,9 +94,7 @@ def _balance(
                 dst = dst.child(name)
                 info.dst_to_match = info.dst_to_match[1:]
             elif up_fi.parent is not None and _fg_inverse(st, up_fi.parent, dst):
-                position = _position(up_fi)
-                if 0 <= position < len(dst.children):
-                    dst = dst.children[position]
+                dst = _at_same_position(dst, up_fi)
             elif isinstance(src, FeatureMirror):
                 # OSATE matches the source by name here
                 src = dst.child(up_fi.key)
@@ -113,9 +109,7 @@ def _balance(
                 src = src.child(name)
                 info.src_to_match = info.src_to_match[1:]
             elif down_fi.parent is not None and _fg_inverse(st, src, down_fi.parent):
-                position = _position(down_fi)
-                if 0 <= position < len(src.children):
-                    src = src.children[position]
+                src = _at_same_position(src, down_fi)
             else:
                 src = src.child(down_fi.key)
             if src is None:
@@ -218,12 +212,12 @@ def _subset_match(st: Instantiator, info: ConnectionInfo) -> bool:
     return False
 
 
-def _position(fi: FeatureMirror) -> int:
-    siblings = fi.parent.children if fi.parent is not None else fi.owner.features
-    for i, other in enumerate(siblings):
-        if other is fi:
-            return i
-    return -1
+def _at_same_position(group: FeatureMirror, member: FeatureMirror) -> FeatureMirror:
+    """The member of ``group`` at the position ``member`` has among its siblings (``group``
+    itself when it has no member there): how a feature group type and its inverse correspond."""
+    siblings = member.parent.children if member.parent is not None else member.owner.features
+    position = next((i for i, other in enumerate(siblings) if other is member), -1)
+    return group.children[position] if 0 <= position < len(group.children) else group
 
 
 def _up_only(info: ConnectionInfo, src: FeatureMirror, dst: FeatureMirror) -> bool:

@@ -75,34 +75,12 @@ def end_to_end_flows(st: Instantiator) -> None:
 
 
 def _flow_elements(st: Instantiator, ci: ComponentMirror, flow: EObject, seen: set[int]) -> list[EObject]:
+    """The instance objects end-to-end flow ``flow`` of ``ci`` goes through."""
     if id(flow) in seen:
         return []
     seen = seen | {id(flow)}
-    pieces: list[Any] = []
-    for text in list(st.resolver.effective_attribute(flow, "elements") or []):
-        segments = [s.key for s in split_path(text)]
-        if not segments:
-            continue
-        if len(segments) >= 2:
-            child = ci.child(segments[0])
-            if child is not None:
-                pieces.extend(_flow_spec_elements(st, child, segments[1], seen))
-                continue
-            group = ci.feature(segments[0])
-            if group is not None:
-                continue
-        name = segments[0]
-        piece = _connection_or_subcomponent(st, ci, name)
-        if piece is not None:
-            pieces.append(piece)
-            continue
-        other = next(
-            (f for f in st.resolver.end_to_end_flows(ci.node.impl) if (f.name or "").lower() == name),
-            None,
-        )
-        if other is not None:
-            pieces.extend(_flow_elements(st, ci, other, seen))
-    return _resolve_flow_connections(st, pieces)
+    texts = list(st.resolver.effective_attribute(flow, "elements") or [])
+    return _resolve_flow_connections(st, _pieces(st, ci, texts, seen, end_to_end=True))
 
 
 def _flow_spec_elements(st: Instantiator, ci: ComponentMirror, spec_name: str, seen: set[int]) -> list[Any]:
@@ -118,8 +96,18 @@ def _flow_spec_elements(st: Instantiator, ci: ComponentMirror, spec_name: str, s
     if flow_impl is None:
         spec = ci.flow_specs.get(spec_name)
         return [spec if spec is not None else ci.obj]
+    return _pieces(st, ci, flow_impl.elements, seen, end_to_end=False)
+
+
+def _pieces(
+    st: Instantiator, ci: ComponentMirror, texts: list[str], seen: set[int], *, end_to_end: bool
+) -> list:
+    """The elements named by ``texts`` in ``ci`` (an end-to-end flow's, else a flow
+    implementation's): ``sub.spec`` through a subcomponent, a subcomponent's instance object,
+    ``("conn", declaration, ci)`` for a declared connection (resolved later) and, in an
+    end-to-end flow, the elements of another end-to-end flow it names."""
     pieces: list[Any] = []
-    for text in flow_impl.elements:
+    for text in texts:
         segments = [s.key for s in split_path(text)]
         if not segments:
             continue
@@ -127,21 +115,26 @@ def _flow_spec_elements(st: Instantiator, ci: ComponentMirror, spec_name: str, s
             child = ci.child(segments[0])
             if child is not None:
                 pieces.extend(_flow_spec_elements(st, child, segments[1], seen))
+                continue
+            if not end_to_end or ci.feature(segments[0]) is not None:
+                continue
+        name = segments[0]
+        conn = next((c for c in declared_connections(st, ci) if c.name.lower() == name), None)
+        if conn is not None:
+            pieces.append(("conn", conn.decl, ci))
             continue
-        piece = _connection_or_subcomponent(st, ci, segments[0])
-        if piece is not None:
-            pieces.append(piece)
+        child = ci.child(name)
+        if child is not None:
+            pieces.append(child.obj)
+            continue
+        if end_to_end:
+            other = next(
+                (f for f in st.resolver.end_to_end_flows(ci.node.impl) if (f.name or "").lower() == name),
+                None,
+            )
+            if other is not None:
+                pieces.extend(_flow_elements(st, ci, other, seen))
     return pieces
-
-
-def _connection_or_subcomponent(st: Instantiator, ci: ComponentMirror, name: str) -> Any:
-    """A flow element named ``name`` in ``ci``: ``("conn", declaration, ci)`` for a declared
-    connection (resolved later), the instance object of a subcomponent, else None."""
-    conn = next((c for c in declared_connections(st, ci) if c.name.lower() == name), None)
-    if conn is not None:
-        return ("conn", conn.decl, ci)
-    child = ci.child(name)
-    return child.obj if child is not None else None
 
 
 def _resolve_flow_connections(st: Instantiator, pieces: list[Any]) -> list[Any]:

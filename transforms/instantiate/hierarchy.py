@@ -35,6 +35,7 @@ MAX_COMPONENT_INSTANCES = 2_000_000
 def populate(st: Instantiator, ci: ComponentMirror, ancestry: list[EObject]) -> None:
     """Make what component ``ci`` holds, and its subcomponents' (``ancestry``: the subcomponents
     above it, to find containment cycles)."""
+    st.components.append(ci)  # in preorder
     resolver = st.resolver
     classifier = ci.node.classifier
     impl = ci.node.impl

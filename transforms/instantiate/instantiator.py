@@ -24,7 +24,7 @@ from .arrays import expand_arrays
 from .connections import instantiate_connections
 from .flows import end_to_end_flows
 from .hierarchy import populate
-from .mirrors import ComponentMirror, FeatureMirror, preorder
+from .mirrors import ComponentMirror, FeatureMirror
 from .modes import system_operation_modes
 from .property_values import property_values
 
@@ -106,7 +106,7 @@ class Instantiator:
         self.declared: dict[int, list[Any]] = {}
         self.outgoing: dict[int, dict[str, list[Any]]] = {}
         self.feature_plans: dict[int, list[tuple[EObject, str, str, EObject | None, int]]] = {}
-        #: the mirror of the system instance, and every component in preorder
+        #: the mirror of the system instance, and every component in preorder (as made)
         self.root: ComponentMirror | None = None
         self.components: list[ComponentMirror] = []
         #: (system operation mode, ids of its mode instances), in order
@@ -171,7 +171,6 @@ class Instantiator:
         self.root = root_ci
         populate(self, root_ci, [])
         self.raise_errors()
-        self.components = preorder(root_ci)
         system_operation_modes(self)
         instantiate_connections(self)
         expand_arrays(self)
@@ -185,6 +184,8 @@ class Instantiator:
 
     def _root_implementation(self, root: str) -> EObject:
         """The component implementation named ``root``, or a located NameResolutionError."""
+        if root is not None and not isinstance(root, str):
+            raise UsageError(f"the root is named by a string such as 'Pkg::System.impl', not {root!r}")
         resolver = self.resolver
         impl = resolver.classifier(root)
         if impl is None and root and "::" not in root:

@@ -33,7 +33,6 @@ __all__ = [
     "enum_literal",
     "enum_name",
     "literal",
-    "preorder",
 ]
 
 #: Categories where a semantic connection ends (OSATE's "final" components).
@@ -150,17 +149,6 @@ class ConnectionRecord:
     decls: list[EObject]
     kind: str
     contexts: list[ComponentMirror] = field(default_factory=list)
-
-
-def preorder(root: ComponentMirror) -> list[ComponentMirror]:
-    """``root`` and every component below it, depth first, in model order."""
-    order: list[ComponentMirror] = []
-    stack = [root]
-    while stack:
-        ci = stack.pop()
-        order.append(ci)
-        stack.extend(reversed(ci.children))
-    return order
 
 
 def component_path(ci: ComponentMirror) -> str:
