@@ -260,10 +260,11 @@ class Legality:
     def feature(self, category: str | None, kind: str, name: Token) -> None:
         """A feature (node ``kind``) of a component type of ``category`` (None: of a feature
         group type, which may have any)."""
-        if category is None:
+        allowed = FEATURES_ALLOWED.get(category or "")
+        if allowed is None:
             return
         category_name, text = FEATURE_NODES[kind]
-        if category_name not in FEATURES_ALLOWED[category]:
+        if category_name not in allowed:
             self.error(f"a {category} cannot have {text} features ({name})", name.line, name.column)
 
     def subcomponent(self, category: str, sub_category: str, name: Token) -> None:

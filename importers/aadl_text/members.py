@@ -64,6 +64,13 @@ class MemberBuilder:
         self.connection_kinds = known.connection_kinds
         self.flow_kinds = known.flow_kinds
 
+    def properties_and_modes(self, owner: EObject, block: Tree | None, in_modes: Tree | None) -> None:
+        """The property associations (``{ ... }``) and ``in modes`` clause of a member."""
+        if block is not None:
+            add(owner, "ownedPropertyAssociations", *self.associations(block.children))
+        if in_modes is not None:
+            add(owner, "inModes", *mode_refs(in_modes))
+
     # ----------------------------------------------------------------- prototypes
 
     def prototypes(self, section: Tree, members: dict[str, int]) -> list[EObject]:
@@ -158,10 +165,7 @@ class MemberBuilder:
                 add(sub, "arrayDimensions", *[array_size(d) for d in dims.children])
             if elements is not None:
                 add(sub, "arrayElementBindings", *[self.element_implementation(e) for e in elements.children])
-            if block is not None:
-                add(sub, "ownedPropertyAssociations", *self.associations(block.children))
-            if in_modes is not None:
-                add(sub, "inModes", *mode_refs(in_modes))
+            self.properties_and_modes(sub, block, in_modes)
             rules.subcomponent(category, sub_category, name)
             rules.declare(members, name, "subcomponent")
             out.append(sub)
@@ -201,10 +205,7 @@ class MemberBuilder:
                 declare(members, call_name, "subprogram call")
                 calls.append(call)
             add(seq, "calls", *calls)
-            if block is not None:
-                add(seq, "ownedPropertyAssociations", *self.associations(block.children))
-            if in_modes is not None:
-                add(seq, "inModes", *mode_refs(in_modes))
+            self.properties_and_modes(seq, block, in_modes)
             out.append(seq)
         return out
 
@@ -243,10 +244,7 @@ class MemberBuilder:
                 column=column,
                 **values,
             )
-            if block is not None:
-                add(connection, "ownedPropertyAssociations", *self.associations(block.children))
-            if in_modes is not None:
-                add(connection, "inModes", *mode_refs(in_modes))
+            self.properties_and_modes(connection, block, in_modes)
             rules.connection(category, kind, name, source is not None or refined is not None, line, column)
             rules.declare(members, name, "connection")
             out.append(connection)
@@ -279,10 +277,7 @@ class MemberBuilder:
                 column=name.column,
                 **ends,
             )
-            if block is not None:
-                add(flow, "ownedPropertyAssociations", *self.associations(block.children))
-            if in_modes is not None:
-                add(flow, "inModes", *mode_refs(in_modes))
+            self.properties_and_modes(flow, block, in_modes)
             rules.declare(members, name, "flow")
             out.append(flow)
         return out
@@ -322,10 +317,7 @@ class MemberBuilder:
                 flows.append(flow)
             if segments is not None:
                 add(flow, "elements", *[path_text(p) for p in segments.children])
-            if block is not None:
-                add(flow, "ownedPropertyAssociations", *self.associations(block.children))
-            if in_modes is not None:
-                add(flow, "inModes", *mode_refs(in_modes))
+            self.properties_and_modes(flow, block, in_modes)
         if flows:
             add(impl, "flowImplementations", *flows)
         if end_to_end:

@@ -196,18 +196,14 @@ class UnitBuilder:
             kind = section.data
             if kind == "features":
                 add(ctype, "features", *builder.features(section, category, members))
-            elif kind == "properties":
-                add(ctype, "ownedPropertyAssociations", *self.values.associations(section.children))
             elif kind == "flow_specs":
                 self.rules.type_section(category, section)
                 add(ctype, "flowSpecifications", *builder.flow_specs(section, members))
             elif kind == "modes" or kind == "requires_modes":
                 self.rules.type_section(category, section)
                 builder.modes(ctype, section, members)
-            elif kind == "prototypes":
-                add(ctype, "prototypes", *builder.prototypes(section, members))
-            else:  # annex_subclause
-                add(ctype, "annexSubclauses", builder.annex_subclause(section))
+            else:
+                self.shared_section(ctype, section, members)
         return ctype
 
     def component_implementation(self, node: Tree, visibility: Any) -> EObject:
@@ -237,8 +233,6 @@ class UnitBuilder:
                 add(impl, "subcomponents", *builder.subcomponents(section, category, members))
             elif kind == "connections":
                 add(impl, "connections", *builder.connections(section, category, members))
-            elif kind == "properties":
-                add(impl, "ownedPropertyAssociations", *self.values.associations(section.children))
             elif kind == "flow_impls":
                 self.rules.implementation_section(category, section)
                 builder.flow_impls(impl, section, members)
@@ -247,10 +241,8 @@ class UnitBuilder:
                 add(impl, "callSequences", *builder.call_sequences(section, members))
             elif kind == "modes":
                 builder.modes(impl, section, members)
-            elif kind == "prototypes":
-                add(impl, "prototypes", *builder.prototypes(section, members))
-            else:  # annex_subclause
-                add(impl, "annexSubclauses", builder.annex_subclause(section))
+            else:
+                self.shared_section(impl, section, members)
         return impl
 
     def feature_group_type(self, node: Tree, visibility: Any) -> EObject:
@@ -270,17 +262,21 @@ class UnitBuilder:
             column=name.column,
         )
         members: dict[str, int] = {}
-        builder = self.members
         for section in sections:
             kind = section.data
             if kind == "features":
-                add(fgt, "features", *builder.features(section, None, members))
-            elif kind == "inverse_of":
-                pass  # set above
-            elif kind == "properties":
-                add(fgt, "ownedPropertyAssociations", *self.values.associations(section.children))
-            elif kind == "prototypes":
-                add(fgt, "prototypes", *builder.prototypes(section, members))
-            else:  # annex_subclause
-                add(fgt, "annexSubclauses", builder.annex_subclause(section))
+                add(fgt, "features", *self.members.features(section, None, members))
+            elif kind != "inverse_of":  # inverse_of: set above
+                self.shared_section(fgt, section, members)
         return fgt
+
+    def shared_section(self, classifier: EObject, section: Tree, members: dict[str, int]) -> None:
+        """A section that every kind of classifier may have: properties, prototypes or an annex
+        subclause."""
+        kind = section.data
+        if kind == "properties":
+            add(classifier, "ownedPropertyAssociations", *self.values.associations(section.children))
+        elif kind == "prototypes":
+            add(classifier, "prototypes", *self.members.prototypes(section, members))
+        else:  # annex_subclause
+            add(classifier, "annexSubclauses", self.members.annex_subclause(section))

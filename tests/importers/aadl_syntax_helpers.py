@@ -5,31 +5,15 @@ pytest's import path)."""
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from pathlib import Path
 
 from lark import Token, Tree
 
+from rosaadl.importers import aadl_syntax
+
 __all__ = ["ROOT", "aadl_syntax", "find", "in_impl", "in_type", "only", "parse", "value_of", "words"]
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-def _load_module():
-    try:
-        from rosaadl.importers import aadl_syntax
-    except ImportError:  # the rosaadl.importers mapping needs the project installed
-        name = "_rosaadl_importers_aadl_syntax"
-        spec = importlib.util.spec_from_file_location(name, ROOT / "importers" / "aadl_syntax.py")
-        assert spec is not None and spec.loader is not None
-        aadl_syntax = importlib.util.module_from_spec(spec)
-        sys.modules[name] = aadl_syntax
-        spec.loader.exec_module(aadl_syntax)
-    return aadl_syntax
-
-
-aadl_syntax = _load_module()
 parse = aadl_syntax.parse
 
 
