@@ -48,7 +48,7 @@ The package, one idea per module:
   diagnostics of one file;
 * :mod:`.checks`: the checks across units (names, units, enumeration literals);
 * :mod:`.factory` (making model objects fast), :mod:`.lexical` (literals and the source text)
-  and :mod:`.tree` (small readers of the parse tree).
+  and :mod:`.tree` (the vocabulary of the parse tree and small readers of its nodes).
 """
 
 from __future__ import annotations

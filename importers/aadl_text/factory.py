@@ -19,8 +19,7 @@ from pyecore.ecore import EObject
 from rosaadl import metamodels
 from rosaadl.bulk import FastBuilder, FastFactory, FeatureSlot
 from rosaadl.errors import ModelError
-from rosaadl.importers.aadl_text.legality import CATEGORIES
-from rosaadl.importers.aadl_text.tree import CONNECTION_NODES, FEATURE_NODES, FLOW_KIND_NODES
+from rosaadl.importers.aadl_text.tree import CATEGORIES, CONNECTION_NODES, FEATURE_NODES, FLOW_KIND_NODES
 
 __all__ = ["Literals", "add", "literals", "make", "maker"]
 

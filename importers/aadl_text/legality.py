@@ -20,11 +20,10 @@ from typing import Any
 from lark import Token, Tree
 
 from rosaadl.errors import AadlSyntaxError, Diagnostic, Location
-from rosaadl.importers.aadl_text.tree import CONNECTION_NODES, FEATURE_NODES, keywords, position
+from rosaadl.importers.aadl_text.tree import CATEGORIES, CONNECTION_NODES, FEATURE_NODES, keywords, position
 
 __all__ = [
     "CALLS_ALLOWED",
-    "CATEGORIES",
     "CONNECTIONS_ALLOWED",
     "FEATURES_ALLOWED",
     "SUBCOMPONENTS_ALLOWED",
@@ -58,25 +57,6 @@ FEATURES_ALLOWED: dict[str, frozenset[str]] = {
     "virtual bus": _PORTS | _COMMON_FEATURES,
 }
 
-#: The 14 component categories, in AADL words.
-CATEGORIES = frozenset(
-    {
-        "abstract",
-        "bus",
-        "data",
-        "device",
-        "memory",
-        "process",
-        "processor",
-        "subprogram",
-        "subprogram group",
-        "system",
-        "thread",
-        "thread group",
-        "virtual bus",
-        "virtual processor",
-    }
-)
 _SOFTWARE_PARTS = frozenset({"data", "subprogram", "subprogram group", "abstract"})
 
 #: The subcomponent categories an implementation of each category may hold.

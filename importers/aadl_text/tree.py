@@ -1,7 +1,9 @@
-"""Small readers of the parse tree: node names and the text of references as written.
+"""The vocabulary of the parse tree and small readers of its nodes.
 
 The node names and child layouts are those of ``aadl.lark`` (see
-:mod:`rosaadl.importers.aadl_syntax`).  Each function here turns one small node into the string
+:mod:`rosaadl.importers.aadl_syntax`); the tables here say which model literal each kind of
+node stands for (:data:`CATEGORIES`, :data:`FEATURE_NODES`, :data:`CONNECTION_NODES`,
+:data:`FLOW_KIND_NODES`).  Each function here turns one small node into the string
 the metamodel keeps: a classifier reference ``Pkg::T.impl``, a path ``a.b[2].c``, an array size,
 a connection end, a mode reference, an ``applies to`` owner; or gives the keywords of a node and
 the position of its first token.
@@ -16,6 +18,7 @@ from lark import Token, Tree
 from rosaadl.importers.aadl_text.lexical import parse_integer
 
 __all__ = [
+    "CATEGORIES",
     "CONNECTION_NODES",
     "FEATURE_NODES",
     "FLOW_KIND_NODES",
@@ -23,12 +26,32 @@ __all__ = [
     "classifier_ref",
     "end_text",
     "feature_classifier",
-    "mode_refs",
     "keywords",
+    "mode_refs",
     "owner_text",
     "path_text",
     "position",
 ]
+
+#: The 14 component categories, in the words :func:`keywords` gives for a category node.
+CATEGORIES = frozenset(
+    {
+        "abstract",
+        "bus",
+        "data",
+        "device",
+        "memory",
+        "process",
+        "processor",
+        "subprogram",
+        "subprogram group",
+        "system",
+        "thread",
+        "thread group",
+        "virtual bus",
+        "virtual processor",
+    }
+)
 
 #: The feature nodes: their ``FeatureCategory`` literal name and their AADL words.
 FEATURE_NODES: dict[str, tuple[str, str]] = {
@@ -44,6 +67,7 @@ FEATURE_NODES: dict[str, tuple[str, str]] = {
     "subprogram_access": ("subprogramAccess", "subprogram access"),
     "subprogram_group_access": ("subprogramGroupAccess", "subprogram group access"),
 }
+
 #: The connection nodes: their ``ConnectionKind`` in AADL words.
 CONNECTION_NODES: dict[str, str] = {
     "port_connection": "port",
@@ -52,6 +76,7 @@ CONNECTION_NODES: dict[str, str] = {
     "feature_connection": "feature",
     "parameter_connection": "parameter",
 }
+
 #: The flow specification and flow implementation nodes: their ``FlowKind``.
 FLOW_KIND_NODES: dict[str, str] = {
     "flow_source_spec": "source",

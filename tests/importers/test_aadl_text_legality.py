@@ -120,8 +120,7 @@ abstract implementation A.i subcomponents t: thread T.i; tg: thread group; end A
 def test_the_tables_speak_the_metamodel() -> None:
     """The rules name feature kinds as the metamodel's literals do, and every category."""
     from rosaadl.importers.aadl_text.factory import literals
-    from rosaadl.importers.aadl_text.legality import CATEGORIES
-    from rosaadl.importers.aadl_text.tree import FEATURE_NODES
+    from rosaadl.importers.aadl_text.tree import CATEGORIES, FEATURE_NODES
 
     made = literals()
     assert {node: made.feature_categories[node].name for node in FEATURE_NODES} == {
