@@ -481,7 +481,7 @@ def test_garbage_and_binary_files(tmp_path):
 
 
 def test_too_large_file_is_refused(tmp_path, monkeypatch):
-    monkeypatch.setattr(rosmod_text, "MAX_FILE_BYTES", 100)
+    monkeypatch.setattr(rosmod_text.files, "MAX_FILE_BYTES", 100)  # where the reader looks it up
     errors = errors_of(write_v03(tmp_path))
     assert sorted(_loc(e)[0] for e in errors) == ["deployment.rdp", "lab.rhw", "software.rml"]
     assert all("above 100 bytes are refused" in e.message for e in errors)
@@ -645,6 +645,16 @@ def test_v04_refusals(tmp_path):
     assert "malformed JSON" in err.message and _loc(err)[:2] == ("x.rml", 2)
     (folder / "x.rml").write_text('{"py/object": "__main__.Software"}')
     assert "expected a ROSMOD v0.4 project" in only_error(folder).message
+
+
+def test_v04_dangling_object_reference_is_reported_not_a_crash(tmp_path):
+    folder = tmp_path / "v04"
+    folder.mkdir()
+    deployment = {"py/object": "__main__.Deployment", "children": {"_inner": [{"py/id": 99}]}}
+    data = {"py/object": "__main__.Project", "children": {"_inner": [deployment]}}
+    (folder / "x.rml").write_text(json.dumps(data))
+    err = only_error(folder)
+    assert isinstance(err, NameResolutionError) and "the host reference is missing" in err.message
 
 
 # --------------------------------------------------------------------------- corpus
