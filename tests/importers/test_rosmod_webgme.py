@@ -406,11 +406,11 @@ def test_corrupt_member_data(tmp_path):
 
 def test_size_and_member_caps(tmp_path, monkeypatch):
     path = write_export(tmp_path / "big.webgmex", build_export(), {"blob.content": bytes(100_000)})
-    monkeypatch.setattr(rosmod_webgme, "MAX_TOTAL_BYTES", 50_000)
+    monkeypatch.setattr(rosmod_webgme.archive, "MAX_TOTAL_BYTES", 50_000)
     (err,) = import_error(path)
     assert "would unpack to" in err.message
-    monkeypatch.setattr(rosmod_webgme, "MAX_TOTAL_BYTES", 200 * 1024 * 1024)
-    monkeypatch.setattr(rosmod_webgme, "MAX_MEMBERS", 1)
+    monkeypatch.setattr(rosmod_webgme.archive, "MAX_TOTAL_BYTES", 200 * 1024 * 1024)
+    monkeypatch.setattr(rosmod_webgme.archive, "MAX_MEMBERS", 1)
     (err,) = import_error(path)
     assert "members" in err.message
 
