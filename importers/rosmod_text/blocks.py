@@ -14,9 +14,9 @@ import bisect
 import re
 from dataclasses import dataclass
 
-from rosaadl.errors import ParseError
+from rosaadl.errors import Location, ParseError
 
-__all__ = ["MAX_DEPTH", "Token", "Stmt", "tokenize", "is_punct", "parse_blocks"]
+__all__ = ["MAX_DEPTH", "Token", "Stmt", "at", "tokenize", "is_punct", "parse_blocks"]
 
 #: Deepest nesting of ``{ }`` blocks read; deeper input is refused with a located error.
 MAX_DEPTH = 200
@@ -151,6 +151,11 @@ class Stmt:
         return self.value[0] if self.value else self.head[-1]
 
 
+def at(filename: str | None, place: Token | Stmt) -> Location:
+    """Where ``place`` (a token or a statement) stands in ``filename``: for located errors."""
+    return Location(file=filename, line=place.line, column=place.column)
+
+
 def is_punct(token: Token, text: str) -> bool:
     return token.kind == "punct" and token.text == text
 
@@ -170,9 +175,7 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
             continue
         if is_punct(tok, "}"):
             if len(stack) == 1:
-                raise ParseError(
-                    "unexpected '}' (no block is open here)", file=filename, line=tok.line, column=tok.column
-                )
+                raise ParseError("unexpected '}' (no block is open here)", location=at(filename, tok))
             stack.pop()
             i += 1
             continue
@@ -185,15 +188,11 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
             raise ParseError(
                 f"expected ';' or '{{' after {text[head[0].start : last.end].strip()!r}, "
                 "found the end of the file",
-                file=filename,
-                line=last.line,
-                column=last.column,
+                location=at(filename, last),
             )
         stop = tokens[i]
         if not head:
-            raise ParseError(
-                f"expected a name before {stop.text!r}", file=filename, line=stop.line, column=stop.column
-            )
+            raise ParseError(f"expected a name before {stop.text!r}", location=at(filename, stop))
         if stop.text == "=":
             i += 1
             value: list[Token] = []
@@ -206,16 +205,12 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
                 raise ParseError(
                     f"expected ';' after the value of {text[head[0].start : head[-1].end].strip()!r}, "
                     f"found {found}",
-                    file=filename,
-                    line=where.line,
-                    column=where.column,
+                    location=at(filename, where),
                 )
             if not value:
                 raise ParseError(
                     f"expected a value after '=' for {text[head[0].start : head[-1].end].strip()!r}",
-                    file=filename,
-                    line=stop.line,
-                    column=stop.column,
+                    location=at(filename, stop),
                 )
             body.append(Stmt(head, value=value, source=text))
             i += 1
@@ -228,18 +223,14 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
             if len(stack) > MAX_DEPTH:
                 raise ParseError(
                     f"blocks nested more than {MAX_DEPTH} deep",
-                    file=filename,
-                    line=stop.line,
-                    column=stop.column,
+                    location=at(filename, stop),
                 )
             stack.append((stmt.body, stmt, stop))
             i += 1
         else:  # "}" right after a head: a statement without its ';'
             raise ParseError(
                 f"expected ';' or '{{' after {text[head[0].start : head[-1].end].strip()!r}, found '}}'",
-                file=filename,
-                line=stop.line,
-                column=stop.column,
+                location=at(filename, stop),
             )
     if len(stack) > 1:
         _, stmt, brace = stack[-1]
@@ -247,8 +238,6 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
         chain = " > ".join(s.key for _, s, _ in stack[1:] if s is not None)
         raise ParseError(
             f"unclosed '{{' of {stmt.key!r} (in {chain}): expected '}}' before the end of the file",
-            file=filename,
-            line=brace.line,
-            column=brace.column,
+            location=at(filename, brace),
         )
     return root

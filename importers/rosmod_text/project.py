@@ -20,17 +20,18 @@ from pyecore.ecore import EObject
 
 from rosaadl.errors import Diagnostic, ParseError
 from rosaadl.importers.rosmod_text import v01, v02, v03, v04
-from rosaadl.importers.rosmod_text.blocks import Stmt, parse_blocks
+from rosaadl.importers.rosmod_text.blocks import Stmt, at, parse_blocks
 from rosaadl.importers.rosmod_text.context import ImportContext, RosmodImportError
 from rosaadl.importers.rosmod_text.files import read_text, shown_path, side_files
 from rosaadl.importers.rosmod_text.resolution import (
     DeploymentInfo,
+    ProjectModels,
     SoftwareInfo,
     check_unique,
     resolve_deployment,
     resolve_software,
 )
-from rosaadl.importers.rosmod_text.statements import new, new_property
+from rosaadl.importers.rosmod_text.statements import new, new_property, skip
 
 __all__ = ["read_project", "read_software_file", "is_rosmod_project"]
 
@@ -134,10 +135,9 @@ def read_project(
     # names across files
     if software is not None and sw_info is not None:
         resolve_software(software, sw_info, ctx)
+    models = ProjectModels(systems, project.software, sw_info, software_failed, failed_systems)
     for deployment, info in deployments:
-        resolve_deployment(
-            deployment, info, systems, project.software, sw_info, ctx, software_failed, failed_systems
-        )
+        resolve_deployment(deployment, info, models, ctx)
     if version is None:  # no software model: tell v0.2 from v0.3 by the hardware/deployment syntax
         legacy_dp = any(p.key.startswith("host_instance:") for d in project.deployments for p in d.properties)
         version = "0.2" if (legacy_hw or legacy_dp) else "0.3"
@@ -237,7 +237,7 @@ def _read_software(
             elif stmt.keyword == "package" and stmt.body is not None:
                 software.packages.append(read_package(stmt, info, ctx))
             else:
-                ctx.warn(f"unknown statement {stmt.key!r} skipped", shown, stmt.line, stmt.column)
+                skip(ctx, stmt, shown)
         except ParseError as exc:
             ctx.error(exc)
     return software, info
@@ -282,15 +282,11 @@ def _read_deployment(
             if stmt.keyword == "using" and stmt.body is None and stmt.value is None:
                 ref = "".join(t.text for t in stmt.head[1:])
                 if not ref:
-                    raise ParseError(
-                        "expected 'using <hardware model>;'", file=shown, line=stmt.line, column=stmt.column
-                    )
+                    raise ParseError("expected 'using <hardware model>;'", location=at(shown, stmt))
                 if info.using is not None:
                     raise ParseError(
                         f"a second 'using' (the first is at line {info.using.line})",
-                        file=shown,
-                        line=stmt.line,
-                        column=stmt.column,
+                        location=at(shown, stmt),
                     )
                 deployment.systemName = ref
                 info.using = stmt
@@ -299,7 +295,7 @@ def _read_deployment(
             elif stmt.keyword == "host_instance" and stmt.body is not None:
                 v02.host_instance(stmt, deployment, shown, info, ctx)
             else:
-                ctx.warn(f"unknown statement {stmt.key!r} skipped", shown, stmt.line, stmt.column)
+                skip(ctx, stmt, shown)
         except ParseError as exc:
             ctx.error(exc)
     check_unique(deployment.nodes, "node", f"deployment {name!r}", shown, ctx)

@@ -19,7 +19,7 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl.errors import NameResolutionError
-from rosaadl.importers.rosmod_text.blocks import Stmt, Token
+from rosaadl.importers.rosmod_text.blocks import Stmt, Token, at
 from rosaadl.importers.rosmod_text.context import ImportContext
 from rosaadl.importers.rosmod_text.statements import new, qualify
 
@@ -27,6 +27,7 @@ __all__ = [
     "SoftwareInfo",
     "Ref",
     "DeploymentInfo",
+    "ProjectModels",
     "check_unique",
     "resolve_software",
     "resolve_deployment",
@@ -181,26 +182,30 @@ def resolve_software(software: EObject, info: SoftwareInfo, ctx: ImportContext) 
 # --------------------------------------------------------------------------- deployments
 
 
+@dataclass
+class ProjectModels:
+    """What the project's other files gave, for a deployment's names to resolve against."""
+
+    systems: dict[str, EObject]  # the hardware models by name
+    software: EObject | None
+    sw_info: SoftwareInfo | None
+    software_failed: bool = False  # the software model could not be read
+    failed_systems: set[str] = field(default_factory=set)  # hardware models that could not be read
+
+
 def resolve_deployment(
-    deployment: EObject,
-    info: DeploymentInfo,
-    systems: dict[str, EObject],
-    software: EObject | None,
-    sw_info: SoftwareInfo | None,
-    ctx: ImportContext,
-    software_failed: bool = False,
-    failed_systems: frozenset[str] | set[str] = frozenset(),
+    deployment: EObject, info: DeploymentInfo, models: ProjectModels, ctx: ImportContext
 ) -> None:
     """Set the hardware model, hosts, components and port references of one deployment.
 
-    Names into a hardware model of ``failed_systems``, or into the software when
-    ``software_failed``, are left alone: that file's own errors are already reported.
+    Names into a hardware model that could not be read, or into the software when it could not
+    be read, are left alone: that file's own errors are already reported.
     """
-    resolver = _DeploymentResolver(deployment, info, systems, software, sw_info, ctx, failed_systems)
+    resolver = _DeploymentResolver(deployment, info, models, ctx)
     for ref in info.refs:
         if ref.kind == "host":
             resolver.host(ref)
-        elif software_failed:
+        elif models.software_failed:
             continue  # the software model could not be read: already reported
         elif ref.kind == "component":
             resolver.component(ref)
@@ -214,22 +219,15 @@ class _DeploymentResolver:
     """The name tables of one deployment's resolution; one method per kind of reference."""
 
     def __init__(
-        self,
-        deployment: EObject,
-        info: DeploymentInfo,
-        systems: dict[str, EObject],
-        software: EObject | None,
-        sw_info: SoftwareInfo | None,
-        ctx: ImportContext,
-        failed_systems: frozenset[str] | set[str],
+        self, deployment: EObject, info: DeploymentInfo, models: ProjectModels, ctx: ImportContext
     ) -> None:
         self.deployment = deployment
         self.shown = info.filename
-        self.systems = systems
-        self.sw_info = sw_info
+        self.systems = models.systems
+        self.sw_info = models.sw_info
         self.ctx = ctx
-        self.failed_systems = failed_systems
-        self.names = _Names(software)
+        self.failed_systems = models.failed_systems
+        self.names = _Names(models.software)
         self.host_tables: dict[int, dict[str, EObject]] = {}
         self.using = self._using(info)
 
@@ -255,9 +253,19 @@ class _DeploymentResolver:
         return using
 
     def _error(self, message: str, ref: Ref) -> None:
-        self.ctx.error(
-            NameResolutionError(message, file=self.shown, line=ref.token.line, column=ref.token.column)
+        self.ctx.error(NameResolutionError(message, location=at(self.shown, ref.token)))
+
+    def _package_known(self, pkg_name: str, what: str, ref: Ref) -> bool:
+        """Is ``pkg_name`` a package of the software? If not, an error at ``ref`` (of a ``what``)."""
+        packages = self.names.packages
+        if pkg_name in packages:
+            return True
+        known = ", ".join(sorted(packages)) or "none"
+        self._error(
+            f"{what} {ref.obj.name!r} refers to unknown package {pkg_name or ref.text!r} (packages: {known})",
+            ref,
         )
+        return False
 
     def host(self, ref: Ref) -> None:
         """A node's ``<hardware>/<host>`` (or a bare host of the ``using`` model)."""
@@ -307,14 +315,7 @@ class _DeploymentResolver:
     def component(self, ref: Ref) -> None:
         """A component instance's ``<package>/<component>``."""
         pkg_name, _, comp_name = ref.text.rpartition("/")
-        packages = self.names.packages
-        if packages.get(pkg_name) is None:
-            known = ", ".join(sorted(packages)) or "none"
-            self._error(
-                f"component_instance {ref.obj.name!r} refers to unknown package "
-                f"{pkg_name or ref.text!r} (packages: {known})",
-                ref,
-            )
+        if not self._package_known(pkg_name, "component_instance", ref):
             return
         comp = self.names.components[pkg_name].get(comp_name)
         if comp is None:
@@ -345,13 +346,7 @@ class _DeploymentResolver:
         packages = names.packages
         pkg_name, _, node_name = ref.text.rpartition("/")
         nodes = (sw_info.nodes.get(pkg_name) if sw_info is not None else None) or {}
-        if pkg_name not in packages:
-            known = ", ".join(sorted(packages)) or "none"
-            self._error(
-                f"node_instance {ref.obj.name!r} refers to unknown package {pkg_name or ref.text!r} "
-                f"(packages: {known})",
-                ref,
-            )
+        if not self._package_known(pkg_name, "node_instance", ref):
             return
         if node_name not in nodes:
             self._error(

@@ -4,7 +4,8 @@ The helpers every textual dialect uses on a :class:`~.blocks.Stmt`: :func:`secon
 and v0.2's ``500ms``), :func:`integer`, :func:`name_of` (``kind name``), :func:`typed_head`
 (``kind <package/Type> name``), :func:`qualify`; and :func:`new`, :func:`new_property`, :func:`located`,
 which make ``rosmod.ecore`` objects carrying the line and column they were read at.
-:func:`scheme_literal` is the ``SchedulingScheme`` literal of a name (FIFO, PFIFO or EDF).
+:func:`scheme_literal` is the ``SchedulingScheme`` literal of a name (FIFO, PFIFO or EDF);
+:func:`skip` warns of a statement that means nothing where it stands.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import metamodels
 from rosaadl.errors import ParseError
-from rosaadl.importers.rosmod_text.blocks import Stmt, Token, is_punct
+from rosaadl.importers.rosmod_text.blocks import Stmt, Token, at, is_punct
 from rosaadl.importers.rosmod_text.context import ImportContext
 
 __all__ = [
@@ -32,6 +33,7 @@ __all__ = [
     "typed_head",
     "name_of",
     "qualify",
+    "skip",
 ]
 
 #: The scheduling schemes of a ROSMOD component executor.
@@ -54,22 +56,16 @@ def seconds(stmt: Stmt, filename: str) -> Decimal:
     if not match:
         raise ParseError(
             f"{stmt.key} = {text!r}: expected a number of seconds (such as 0.5, or 500ms in v0.2 files)",
-            file=filename,
-            line=token.line,
-            column=token.column,
+            location=at(filename, token),
         )
     try:
         value = Decimal(match.group(1))
     except InvalidOperation:  # pragma: no cover - the regex admits only valid decimals
-        raise ParseError(
-            f"{text!r} is not a number", file=filename, line=token.line, column=token.column
-        ) from None
+        raise ParseError(f"{text!r} is not a number", location=at(filename, token)) from None
     if value < 0:
         raise ParseError(
             f"{stmt.key} = {text}: a time must not be negative",
-            file=filename,
-            line=token.line,
-            column=token.column,
+            location=at(filename, token),
         )
     unit = match.group(2)
     return value * _UNIT_SCALE[unit] if unit and unit != "s" else value
@@ -92,9 +88,7 @@ def integer(stmt: Stmt, filename: str, ctx: ImportContext) -> int:
             f"{stmt.key} = {text}: read as the integer {int(number)}", filename, token.line, token.column
         )
         return int(number)
-    raise ParseError(
-        f"{stmt.key} = {text!r}: expected an integer", file=filename, line=token.line, column=token.column
-    )
+    raise ParseError(f"{stmt.key} = {text!r}: expected an integer", location=at(filename, token))
 
 
 @functools.cache
@@ -149,9 +143,7 @@ def typed_head(stmt: Stmt, filename: str, what: str) -> tuple[str, str, Token]:
     if lt != 1 or not ref_tokens or len(names) != 1 or names[0].kind != "word":
         raise ParseError(
             f"malformed {what}: expected '{stmt.keyword} <package/Type> name' (found {stmt.key!r})",
-            file=filename,
-            line=stmt.line,
-            column=stmt.column,
+            location=at(filename, stmt),
         )
     ref = "".join(t.text for t in ref_tokens)
     return ref, names[0].text, names[0]
@@ -162,9 +154,7 @@ def name_of(stmt: Stmt, filename: str, what: str) -> str:
     if len(stmt.head) != 2 or stmt.head[1].kind != "word":
         raise ParseError(
             f"malformed {what}: expected '{stmt.keyword} <name>' (found {stmt.key!r})",
-            file=filename,
-            line=stmt.line,
-            column=stmt.column,
+            location=at(filename, stmt),
         )
     return stmt.head[1].text
 
@@ -172,3 +162,10 @@ def name_of(stmt: Stmt, filename: str, what: str) -> str:
 def qualify(ref: str, package: str) -> str:
     """``ref`` as ``package/Name`` (a bare name means one of ``package``)."""
     return ref if "/" in ref else f"{package}/{ref}"
+
+
+def skip(ctx: ImportContext, stmt: Stmt, filename: str, owner: str | None = None, within: str | None = None):
+    """Warn that ``stmt`` (in ``owner``, in its block ``within``) is unknown there and skipped."""
+    prefix = f"{owner}: " if owner else ""
+    inside = f" in {within!r}" if within is not None else ""
+    ctx.warn(f"{prefix}unknown statement {stmt.key!r}{inside} skipped", filename, stmt.line, stmt.column)

@@ -24,10 +24,18 @@ from pyecore.ecore import EObject
 from rosaadl.errors import NameResolutionError, ParseError
 from rosaadl.importers import ros_msg
 from rosaadl.importers.rosmod_text import v03
-from rosaadl.importers.rosmod_text.blocks import Stmt
+from rosaadl.importers.rosmod_text.blocks import Stmt, at
 from rosaadl.importers.rosmod_text.context import ImportContext
 from rosaadl.importers.rosmod_text.resolution import DeploymentInfo, Ref, SoftwareInfo, check_unique
-from rosaadl.importers.rosmod_text.statements import located, name_of, new, new_property, qualify, typed_head
+from rosaadl.importers.rosmod_text.statements import (
+    located,
+    name_of,
+    new,
+    new_property,
+    qualify,
+    skip,
+    typed_head,
+)
 
 __all__ = ["is_v02", "package", "host_instance"]
 
@@ -54,12 +62,7 @@ def package(stmt: Stmt, info: SoftwareInfo, ctx: ImportContext) -> EObject:
     for block in stmt.body or []:
         kw = block.keyword
         if block.body is None:
-            ctx.warn(
-                f"package {name!r}: unknown statement {block.key!r} skipped",
-                filename,
-                block.line,
-                block.column,
-            )
+            skip(ctx, block, filename, f"package {name!r}")
             continue
         keyword, read = _BLOCKS.get(kw, (None, None))
         for item in block.body:
@@ -67,12 +70,7 @@ def package(stmt: Stmt, info: SoftwareInfo, ctx: ImportContext) -> EObject:
                 if read is not None and item.keyword == keyword:
                     read(item, pkg, info, ctx)
                 else:
-                    ctx.warn(
-                        f"package {name!r}: unknown statement {item.key!r} in {kw!r} skipped",
-                        filename,
-                        item.line,
-                        item.column,
-                    )
+                    skip(ctx, item, filename, f"package {name!r}", within=kw)
             except ParseError as exc:
                 ctx.error(exc)
     return pkg
@@ -100,12 +98,7 @@ def _service(item: Stmt, pkg: EObject, info: SoftwareInfo, ctx: ImportContext) -
             (request if part.keyword == "request" else response).extend(specs)
             texts[part.keyword] = text
         else:
-            ctx.warn(
-                f"srv {srv_name!r}: unknown statement {part.key!r} skipped",
-                filename,
-                part.line,
-                part.column,
-            )
+            skip(ctx, part, filename, f"srv {srv_name!r}")
     srv = new(
         "Service",
         **located({"name": srv_name, "definition": texts["request"] + "---\n" + texts["response"]}, item),
@@ -124,9 +117,7 @@ def _fields(stmts: list[Stmt], pkg_name: str, filename: str, ctx: ImportContext)
             ctx.error(
                 ParseError(
                     f"malformed field {item.key!r}: expected '<type> <name>;'",
-                    file=filename,
-                    line=item.line,
-                    column=item.column,
+                    location=at(filename, item),
                 )
             )
             continue
@@ -178,12 +169,7 @@ def _node(item: Stmt, pkg: EObject, info: SoftwareInfo, ctx: ImportContext) -> N
     instances = []
     for sub in item.body or []:
         if sub.keyword != "component":
-            ctx.warn(
-                f"node {node_name!r}: unknown statement {sub.key!r} skipped",
-                filename,
-                sub.line,
-                sub.column,
-            )
+            skip(ctx, sub, filename, f"node {node_name!r}")
             continue
         comp_ref, inst, _ = typed_head(sub, filename, "component instance")
         instances.append((inst, comp_ref, sub))
@@ -192,9 +178,7 @@ def _node(item: Stmt, pkg: EObject, info: SoftwareInfo, ctx: ImportContext) -> N
         ctx.error(
             NameResolutionError(
                 f"duplicate node name {node_name!r} in package {pkg.name!r}",
-                file=filename,
-                line=item.line,
-                column=item.column,
+                location=at(filename, item),
             )
         )
     nodes[node_name] = instances
@@ -229,32 +213,17 @@ def host_instance(
         if item.keyword == "properties" and item.body is not None:
             for setting in item.body:
                 if setting.value is None:
-                    ctx.warn(
-                        f"host_instance {host_name!r}: unknown statement {setting.key!r} skipped",
-                        shown,
-                        setting.line,
-                        setting.column,
-                    )
+                    skip(ctx, setting, shown, f"host_instance {host_name!r}")
                 else:
                     props[setting.key] = setting.value_text
         elif item.keyword == "nodes" and item.body is not None:
             for sub in item.body:
                 if sub.keyword != "node_instance" or sub.body is None:
-                    ctx.warn(
-                        f"host_instance {host_name!r}: unknown statement {sub.key!r} skipped",
-                        shown,
-                        sub.line,
-                        sub.column,
-                    )
+                    skip(ctx, sub, shown, f"host_instance {host_name!r}")
                     continue
                 deployment.nodes.append(_node_instance(sub, stmt, shown, info, ctx))
         else:
-            ctx.warn(
-                f"host_instance {host_name!r}: unknown statement {item.key!r} skipped",
-                shown,
-                item.line,
-                item.column,
-            )
+            skip(ctx, item, shown, f"host_instance {host_name!r}")
     deployment.properties.append(new_property(f"host_instance:{host_name}", json.dumps(props), stmt))
 
 
@@ -266,12 +235,7 @@ def _node_instance(stmt: Stmt, host: Stmt, shown: str, info: DeploymentInfo, ctx
     reference = None
     for setting in stmt.body or []:
         if setting.value is None:
-            ctx.warn(
-                f"node_instance {node.name!r}: unknown statement {setting.key!r} skipped",
-                shown,
-                setting.line,
-                setting.column,
-            )
+            skip(ctx, setting, shown, f"node_instance {node.name!r}")
         elif setting.key == "reference" and reference is None:
             reference = setting
         elif setting.key == "cmdline_arguments" and not node.eIsSet("arguments"):
@@ -282,9 +246,7 @@ def _node_instance(stmt: Stmt, host: Stmt, shown: str, info: DeploymentInfo, ctx
         ctx.error(
             ParseError(
                 f'node_instance {node.name!r} has no reference = "<package>/<node>";',
-                file=shown,
-                line=stmt.line,
-                column=stmt.column,
+                location=at(shown, stmt),
             )
         )
     else:

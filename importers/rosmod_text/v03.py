@@ -27,7 +27,7 @@ from pyecore.ecore import EObject
 
 from rosaadl.errors import ParseError
 from rosaadl.importers import ros_msg
-from rosaadl.importers.rosmod_text.blocks import Stmt, is_punct
+from rosaadl.importers.rosmod_text.blocks import Stmt, at, is_punct
 from rosaadl.importers.rosmod_text.context import ImportContext
 from rosaadl.importers.rosmod_text.files import read_text, shown_path, side_files
 from rosaadl.importers.rosmod_text.resolution import DeploymentInfo, Ref, SoftwareInfo, check_unique
@@ -41,6 +41,7 @@ from rosaadl.importers.rosmod_text.statements import (
     qualify,
     scheme_literal,
     seconds,
+    skip,
     typed_head,
 )
 
@@ -70,12 +71,7 @@ def package(stmt: Stmt, info: SoftwareInfo, ctx: ImportContext) -> EObject:
             except ParseError as exc:
                 ctx.error(exc)
         else:
-            ctx.warn(
-                f"package {pkg_name!r}: unknown statement {item.key!r} skipped",
-                shown,
-                item.line,
-                item.column,
-            )
+            skip(ctx, item, shown, f"package {pkg_name!r}")
     return pkg
 
 
@@ -85,9 +81,7 @@ def _component(stmt: Stmt, pkg_name: str, info: SoftwareInfo, ctx: ImportContext
     if len(head) < 2 or head[1].kind != "word":
         raise ParseError(
             f"malformed component: expected 'component <name> : <datatype>' (found {stmt.key!r})",
-            file=filename,
-            line=stmt.line,
-            column=stmt.column,
+            location=at(filename, stmt),
         )
     datatype = None
     if len(head) >= 4 and is_punct(head[2], ":") and head[3].kind == "word" and len(head) == 4:
@@ -95,9 +89,7 @@ def _component(stmt: Stmt, pkg_name: str, info: SoftwareInfo, ctx: ImportContext
     elif len(head) != 2:
         raise ParseError(
             f"malformed component: expected 'component <name> : <datatype>' (found {stmt.key!r})",
-            file=filename,
-            line=stmt.line,
-            column=stmt.column,
+            location=at(filename, stmt),
         )
     comp = new("Component", **located({"name": head[1].text, "datatype": datatype}, stmt))
     for item in stmt.body or []:
@@ -123,12 +115,7 @@ def component_item(item: Stmt, comp: EObject, pkg_name: str, info: SoftwareInfo,
         comp.ports.append(port)
         info.port_sites.append((port, kw, ref, item.head[2].line, item.head[2].column))
     else:
-        ctx.warn(
-            f"component {comp.name!r}: unknown statement {item.key!r} skipped",
-            filename,
-            item.line,
-            item.column,
-        )
+        skip(ctx, item, filename, f"component {comp.name!r}")
 
 
 def _timer(stmt: Stmt, filename: str, ctx: ImportContext, comp: EObject) -> EObject:
@@ -139,9 +126,7 @@ def _timer(stmt: Stmt, filename: str, ctx: ImportContext, comp: EObject) -> EObj
             if item.value is None:
                 raise ParseError(
                     f"unexpected {item.key!r} in timer {name!r} (expected period/priority/deadline = value;)",
-                    file=filename,
-                    line=item.line,
-                    column=item.column,
+                    location=at(filename, item),
                 )
             if item.key == "period":
                 timer.period = seconds(item, filename)
@@ -169,9 +154,7 @@ def _callback_settings(port: EObject, stmt: Stmt, filename: str, ctx: ImportCont
                 raise ParseError(
                     f"unexpected {item.key!r} in {stmt.keyword} {port.name!r} "
                     "(expected priority/deadline = value;)",
-                    file=filename,
-                    line=item.line,
-                    column=item.column,
+                    location=at(filename, item),
                 )
             if item.key == "priority" and port.eClass.findEStructuralFeature("priority") is not None:
                 port.priority = integer(item, filename, ctx)
@@ -279,12 +262,7 @@ def read_hardware(stmts: list[Stmt], name: str, rel: str, shown: str, ctx: Impor
                 host = new("Host", **located({"name": name_of(stmt, shown, stmt.keyword)}, stmt))
                 for item in stmt.body:
                     if item.value is None:
-                        ctx.warn(
-                            f"host {host.name!r}: unknown statement {item.key!r} skipped",
-                            shown,
-                            item.line,
-                            item.column,
-                        )
+                        skip(ctx, item, shown, f"host {host.name!r}")
                         continue
                     attr = _HOST_KEYS.get(item.key)
                     if attr is not None and not host.eIsSet(attr):
@@ -293,7 +271,7 @@ def read_hardware(stmts: list[Stmt], name: str, rel: str, shown: str, ctx: Impor
                         host.properties.append(new_property(item.key, item.value_text, item))
                 system.hosts.append(host)
             else:
-                ctx.warn(f"unknown statement {stmt.key!r} skipped", shown, stmt.line, stmt.column)
+                skip(ctx, stmt, shown)
         except ParseError as exc:
             ctx.error(exc)
     if ctx.strict:
@@ -322,7 +300,7 @@ def read_hardware(stmts: list[Stmt], name: str, rel: str, shown: str, ctx: Impor
 def _logging(block: Stmt, inst: EObject, shown: str, ctx: ImportContext) -> None:
     for item in block.body or []:
         if item.value is None:
-            ctx.warn(f"logging: unknown statement {item.key!r} skipped", shown, item.line, item.column)
+            skip(ctx, item, shown, "logging")
             continue
         inst.logging.append(new_property(item.key, item.value_text, item))
 
@@ -335,12 +313,7 @@ def _component_instance(stmt: Stmt, shown: str, info: DeploymentInfo, ctx: Impor
                 if setting.keyword == "logging" and setting.body is not None:
                     _logging(setting, inst, shown, ctx)
                 elif setting.value is None:
-                    ctx.warn(
-                        f"component_instance {inst.name!r}: unknown statement {setting.key!r} skipped",
-                        shown,
-                        setting.line,
-                        setting.column,
-                    )
+                    skip(ctx, setting, shown, f"component_instance {inst.name!r}")
                 elif setting.key == "ref" and not inst.eIsSet("componentRef"):
                     inst.componentRef = setting.value_text
                     info.refs.append(Ref(inst, setting.value_text, setting.value_token, "component"))
@@ -368,27 +341,15 @@ def _component_instance(stmt: Stmt, shown: str, info: DeploymentInfo, ctx: Impor
                 elif setting.key == "group" and setting.value is not None:
                     port.group = setting.value_text
                 else:
-                    ctx.warn(
-                        f"port_instance {port.name!r}: unknown statement {setting.key!r} skipped",
-                        shown,
-                        setting.line,
-                        setting.column,
-                    )
+                    skip(ctx, setting, shown, f"port_instance {port.name!r}")
             inst.portInstances.append(port)
         else:
-            ctx.warn(
-                f"component_instance {inst.name!r}: unknown statement {item.key!r} skipped",
-                shown,
-                item.line,
-                item.column,
-            )
+            skip(ctx, item, shown, f"component_instance {inst.name!r}")
     if inst.componentRef is None:
         ctx.error(
             ParseError(
                 f'component_instance {inst.name!r} has no ref = "<package>/<component>";',
-                file=shown,
-                line=stmt.line,
-                column=stmt.column,
+                location=at(shown, stmt),
             )
         )
     check_unique(inst.portInstances, "port_instance", f"component_instance {inst.name!r}", shown, ctx)
@@ -396,20 +357,18 @@ def _component_instance(stmt: Stmt, shown: str, info: DeploymentInfo, ctx: Impor
 
 
 def node(stmt: Stmt, shown: str, info: DeploymentInfo, ctx: ImportContext) -> EObject:
-    """A ``node`` block of a ``.rdp`` file: its properties (host ``ref``, ``priority``, ``cmd_args``)
-    and its component instances."""
+    """A ``node`` block of a ``.rdp`` file: its properties and component instances.
+
+    Its properties give the host (``ref = "<hardware>/<host>"``), ``priority`` and ``cmd_args``;
+    other properties are kept as they are.
+    """
     node = new("Node", **located({"name": name_of(stmt, shown, "node")}, stmt))
     for item in stmt.body or []:
         try:
             if item.keyword == "properties" and item.body is not None:
                 for setting in item.body:
                     if setting.value is None:
-                        ctx.warn(
-                            f"node {node.name!r}: unknown statement {setting.key!r} skipped",
-                            shown,
-                            setting.line,
-                            setting.column,
-                        )
+                        skip(ctx, setting, shown, f"node {node.name!r}")
                     elif setting.key == "ref" and not node.eIsSet("hostRef"):
                         node.hostRef = setting.value_text
                         info.refs.append(Ref(node, setting.value_text, setting.value_token, "host"))
@@ -422,21 +381,14 @@ def node(stmt: Stmt, shown: str, info: DeploymentInfo, ctx: ImportContext) -> EO
             elif item.keyword == "component_instance" and item.body is not None:
                 node.componentInstances.append(_component_instance(item, shown, info, ctx))
             else:
-                ctx.warn(
-                    f"node {node.name!r}: unknown statement {item.key!r} skipped",
-                    shown,
-                    item.line,
-                    item.column,
-                )
+                skip(ctx, item, shown, f"node {node.name!r}")
         except ParseError as exc:
             ctx.error(exc)
     if node.hostRef is None:
         ctx.error(
             ParseError(
                 f'node {node.name!r} has no ref = "<hardware>/<host>"; in its properties',
-                file=shown,
-                line=stmt.line,
-                column=stmt.column,
+                location=at(shown, stmt),
             )
         )
     check_unique(node.componentInstances, "component_instance", f"node {node.name!r}", shown, ctx)

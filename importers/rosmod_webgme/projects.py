@@ -25,6 +25,12 @@ __all__ = ["read_webgmex", "project_names", "map_project"]
 
 log = logging.getLogger(__package__)
 
+# the folders of a project: folder kind → (kind of its items, their mapping, feature of Project)
+_FOLDERS = {
+    "Systems": ("System", systems.system, "systems"),
+    "Deployments": ("Deployment", deployments.deployment, "deployments"),
+}
+
 
 def project_names(path: str | os.PathLike[str]) -> list[str]:
     """Names of the ROSMOD projects in a ``.webgmex`` archive (sorted)."""
@@ -96,18 +102,13 @@ def map_project(m: Mapper, node: Node) -> EObject:
         kind = child.meta_type
         if kind == "Software":
             software_nodes.append(child)
-        elif kind == "Systems":
-            for system in m.children(child):
-                if system.meta_type == "System":
-                    project.systems.append(systems.system(m, system))
+        elif kind in _FOLDERS:
+            item_kind, read, feature = _FOLDERS[kind]
+            for item in m.children(child):
+                if item.meta_type == item_kind:
+                    getattr(project, feature).append(read(m, item))
                 else:
-                    m.unknown(child, system, project.properties)
-        elif kind == "Deployments":
-            for dep in m.children(child):
-                if dep.meta_type == "Deployment":
-                    project.deployments.append(deployments.deployment(m, dep))
-                else:
-                    m.unknown(child, dep, project.properties)
+                    m.unknown(child, item, project.properties)
         elif kind == "Experiments":
             m.experiments.extend((child.name, e) for e in m.children(child))
         elif kind in SKIPPED_KINDS:
