@@ -35,12 +35,13 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import model
-from rosaadl.errors import Location, ParseError
+from rosaadl.errors import Location, ParseError, RosaadlError
 
 __all__ = [
     "PRIMITIVE_SIZES",
     "PRIMITIVE_TYPES",
     "STANDARD_DEFINITIONS",
+    "CollectedErrors",
     "RosMessageError",
     "FieldSpec",
     "MessageSpec",
@@ -145,19 +146,30 @@ _TYPE_RE = re.compile(
 _FIELD_NAME_RE = re.compile(_NAME)
 
 
-class RosMessageError(ParseError):
-    """One or more located problems in a message or service definition (``errors`` lists all)."""
+class CollectedErrors:
+    """Mixin of an error that stands for several located errors found together.
 
-    stage = "parse"
+    Its message and location are those of the first one (with how many more), ``errors`` lists
+    every one and ``str()`` gives one line each. Put it before a :class:`RosaadlError` subclass:
+    ``class RosMessageError(CollectedErrors, ParseError)``; the ROSMOD readers' error uses it too.
+    """
 
-    def __init__(self, errors: Sequence[ParseError]) -> None:
+    errors: list
+
+    def __init__(self, errors: Sequence[RosaadlError]) -> None:
         first = errors[0]
         more = len(errors) - 1
         message = first.message if not more else f"{first.message} (and {more} more)"
-        super().__init__(message, first.location, errors=list(errors))
+        super().__init__(message, first.location, errors=list(errors))  # type: ignore[call-arg]
 
     def __str__(self) -> str:
         return "\n".join(str(e) for e in self.errors)
+
+
+class RosMessageError(CollectedErrors, ParseError):
+    """One or more located problems in a message or service definition (``errors`` lists all)."""
+
+    stage = "parse"
 
 
 @dataclass(frozen=True)
