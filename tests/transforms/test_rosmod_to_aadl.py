@@ -23,12 +23,12 @@ from rosaadl.transforms.rosmod_to_aadl import (
     NameScope,
     aadl_identifier,
     convert_project_files,
-    library_unit_names,
     rosmod_to_aadl,
     seconds_to_time,
     time_to_seconds,
 )
 from rosaadl.units import Quantity
+from rosaadl.workflow.workspace import library_unit_names
 
 _WRITER = importlib.util.find_spec("rosaadl.exporters.aadl_text") is not None
 _READER = _WRITER and importlib.util.find_spec("rosaadl.importers.aadl_text") is not None
@@ -781,7 +781,7 @@ def test_names_that_clash_with_the_library_or_each_other():
         software=new("rosmod.Software", name="sw", packages=packages),
         systems=[new("rosmod.System", name="ros", hosts=hosts)],
     )
-    result = rosmod_to_aadl(project)
+    result = rosmod_to_aadl(project, reserved_units=library_unit_names())
     names = [u.name for u in result.model.units]
     assert names == ["clash_project", "ros_1", "ROS_Properties_1", "x", "ros_hardware"]
     assert prop(result.model.units[1], "ROSMOD_Properties::Name") == "ros"
