@@ -178,6 +178,12 @@ def test_leo_rover_fits_on_one_cortex_a72_core(instances) -> None:
     assert run_analyses(instances["leo_rover"]).ok
 
 
+def test_an_unknown_process_of_a_bound_deployment_is_a_binding_error(bound) -> None:
+    assert bound["pioneer_3dx"].node("tracker_node").process == "tracker_node"
+    with pytest.raises(BindingError, match="has no process 'ghost_node'"):
+        bound["pioneer_3dx"].node("ghost_node")
+
+
 def test_robot_cores_lists_every_core_with_its_type(library) -> None:
     cores = robot_cores(library, "pioneer_3dx::Pioneer_3DX.impl")
     assert [c.path.rpartition(".")[2] for c in cores] == [f"big_proc{i}" for i in range(1, 5)] + [

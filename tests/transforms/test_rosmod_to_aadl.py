@@ -208,6 +208,12 @@ def test_time_to_seconds_gives_plain_decimals():
     assert time_to_seconds(3, "Bytes") is None
 
 
+@pytest.mark.parametrize("seconds", ["soon", None, "nan", "inf", [1]])
+def test_seconds_to_time_refuses_what_is_not_a_number_of_seconds(seconds):
+    with pytest.raises(TransformationError, match="not a number of seconds"):
+        seconds_to_time(seconds)
+
+
 # --------------------------------------------------------------------------- the mapping
 
 

@@ -13,6 +13,8 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.errors import TransformationError
+
 __all__ = ["given", "plain_seconds", "seconds_to_time", "time_to_seconds"]
 
 
@@ -41,8 +43,9 @@ _UNIT_SECONDS = {
 
 def seconds_to_time(seconds: Decimal | int | str) -> tuple[int, str, bool]:
     """``(value, unit, exact)``: the seconds as an integer AADL time in ``ms`` when that is
-    exact, else ``us``, ``ns``, ``ps``; ``exact`` is False when even ``ps`` had to be rounded."""
-    value = Decimal(seconds)
+    exact, else ``us``, ``ns``, ``ps``; ``exact`` is False when even ``ps`` had to be rounded.
+    Anything but a finite number is a :class:`~rosaadl.errors.TransformationError`."""
+    value = _decimal(seconds)
     scaled = value
     for unit, scale in _TIME_SCALES:
         scaled = value * scale
@@ -54,7 +57,17 @@ def seconds_to_time(seconds: Decimal | int | str) -> tuple[int, str, bool]:
 def plain_seconds(value: Decimal | int | str) -> Decimal:
     """The plain decimal of a number of seconds: no exponent, no trailing zeros (``0.500`` →
     ``0.5``, ``10`` stays ``10``); what :func:`time_to_seconds` gives."""
-    return Decimal(format(Decimal(value).normalize(), "f"))
+    return Decimal(format(_decimal(value).normalize(), "f"))
+
+
+def _decimal(seconds: Decimal | int | str) -> Decimal:
+    try:
+        value = Decimal(seconds)
+    except (InvalidOperation, TypeError, ValueError):
+        value = None
+    if value is None or not value.is_finite():
+        raise TransformationError(f"not a number of seconds: {seconds!r}")
+    return value
 
 
 def time_to_seconds(value: int | float, unit: str | None) -> Decimal | None:
