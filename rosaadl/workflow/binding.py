@@ -22,7 +22,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import model as _model
 from rosaadl.analysis.deployment import DeploymentResult, search_deployment
-from rosaadl.analysis.resources import PropertyReader
+from rosaadl.analysis.instance_values import PropertyReader
 from rosaadl.errors import ParseError
 from rosaadl.exporters.aadl_text import write_model, write_unit
 from rosaadl.importers.aadl_text import read_files, read_string
