@@ -24,6 +24,7 @@ def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
     from rosaadl.formats import read_input
     from rosaadl.importers.aadl_text import read_files
     from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+    from rosaadl.workflow.workspace import library_unit_names
 
     loaded = read_input(path, project=project)
     if len(loaded.roots) > 1:
@@ -31,7 +32,7 @@ def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
         raise UsageError(
             f"the input holds several projects ({names}); choose one with --project", file=str(path)
         )
-    converted = rosmod_to_aadl(loaded.root)
+    converted = rosmod_to_aadl(loaded.root, reserved_units=library_unit_names())
     warnings: list[Diagnostic] = list(loaded.warnings) + list(converted.warnings)
     workspace = read_files([], warnings=warnings, check=False)
     workspace.units.extend(list(converted.model.units))

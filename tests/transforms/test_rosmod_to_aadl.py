@@ -23,12 +23,12 @@ from rosaadl.transforms.rosmod_to_aadl import (
     NameScope,
     aadl_identifier,
     convert_project_files,
-    library_unit_names,
     rosmod_to_aadl,
     seconds_to_time,
     time_to_seconds,
 )
 from rosaadl.units import Quantity
+from rosaadl.workflow.workspace import library_unit_names
 
 _WRITER = importlib.util.find_spec("rosaadl.exporters.aadl_text") is not None
 _READER = _WRITER and importlib.util.find_spec("rosaadl.importers.aadl_text") is not None
@@ -206,6 +206,12 @@ def test_time_to_seconds_gives_plain_decimals():
     assert str(time_to_seconds(10, "sec")) == "10"
     assert str(time_to_seconds(2, "min")) == "120"
     assert time_to_seconds(3, "Bytes") is None
+
+
+@pytest.mark.parametrize("seconds", ["soon", None, "nan", "inf", [1]])
+def test_seconds_to_time_refuses_what_is_not_a_number_of_seconds(seconds):
+    with pytest.raises(TransformationError, match="not a number of seconds"):
+        seconds_to_time(seconds)
 
 
 # --------------------------------------------------------------------------- the mapping
@@ -781,7 +787,7 @@ def test_names_that_clash_with_the_library_or_each_other():
         software=new("rosmod.Software", name="sw", packages=packages),
         systems=[new("rosmod.System", name="ros", hosts=hosts)],
     )
-    result = rosmod_to_aadl(project)
+    result = rosmod_to_aadl(project, reserved_units=library_unit_names())
     names = [u.name for u in result.model.units]
     assert names == ["clash_project", "ros_1", "ROS_Properties_1", "x", "ros_hardware"]
     assert prop(result.model.units[1], "ROSMOD_Properties::Name") == "ros"
