@@ -195,7 +195,7 @@ def _close(workspace: EObject, name: str, limit: int = 8) -> list[str]:
         lowered.setdefault(qualified.lower(), qualified)
         local = qualified.rpartition("::")[2].lower()
         lowered.setdefault(local, qualified)
-    wanted = "".join(name.split()).lower()
+    wanted = "".join((name or "").split()).lower()
     hits = difflib.get_close_matches(wanted, list(lowered), n=limit * 2, cutoff=0.6)
     contains = [key for key in lowered if wanted and wanted in key and key not in hits]
     out: list[str] = []
