@@ -1,7 +1,7 @@
 """The one printer of property values as AADL text (``rosaadl.property_text``).
 
 The AADL text writer uses it with rules that check every name and refuse what has no AADL form
-(its own tests are in ``tests/exporters/test_aadl_text_values.py``); ``format_value`` uses it
+(its own tests are in ``tests/exporters/test_aadl_writer_values.py``); ``format_value`` uses it
 leniently for showing a model (``rosaadl library show``), instance references included.
 """
 
