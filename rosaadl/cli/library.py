@@ -63,7 +63,7 @@ def command() -> None:
 @pass_options
 def list_command(options: Options, inputs: tuple[Path, ...], fmt: str | None) -> None:
     """List every package and property set with its components (INPUTs: more AADL files or folders)."""
-    from rosaadl.component_library import list_packages, read_library
+    from rosaadl.workflow.library_catalog import list_packages, read_library
 
     options = _options(options, fmt)
     report = Report()
@@ -102,7 +102,7 @@ def list_command(options: Options, inputs: tuple[Path, ...], fmt: str | None) ->
 @pass_options
 def show_command(options: Options, name: str, inputs: tuple[Path, ...], fmt: str | None) -> None:
     """Show what NAME is: a package, a property set, Pkg::T, Pkg::T.impl or an unqualified name."""
-    from rosaadl.component_library import ComponentNotFound, describe, read_library
+    from rosaadl.workflow.library_catalog import ComponentNotFound, describe, read_library
 
     options = _options(options, fmt)
     report = Report()
@@ -210,7 +210,7 @@ def _unit_lines(info: dict[str, Any]) -> list[str]:
     for ren in info["renames"]:
         words = [ren["name"], "renames", ren["kind"], ren["target"]]
         lines.append("  " + " ".join(w for w in words if w))
-    from rosaadl.component_library import ComponentSummary
+    from rosaadl.workflow.library_catalog import ComponentSummary
 
     for component in info["components"]:
         lines.append(f"  {ComponentSummary(**component)}")
@@ -241,7 +241,7 @@ def add_profile_command(
     """Turn a CSV of measurements into PDM implementations of library nodes (INPUTs: AADL files or
     folders with nodes that are not in the library). Columns: node, thread, board, core, period_us,
     cet_us, mips_raw, ipc, data_size_bytes [, processor]."""
-    from rosaadl.component_library import add_profiles
+    from rosaadl.workflow.library_add_profile import add_profiles
 
     options = _options(options, fmt)
     report = Report()
