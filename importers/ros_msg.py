@@ -35,13 +35,12 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import model
-from rosaadl.errors import Location, ParseError, RosaadlError
+from rosaadl.errors import CollectedErrors, Location, ParseError
 
 __all__ = [
     "PRIMITIVE_SIZES",
     "PRIMITIVE_TYPES",
     "STANDARD_DEFINITIONS",
-    "CollectedErrors",
     "RosMessageError",
     "FieldSpec",
     "MessageSpec",
@@ -144,26 +143,6 @@ _TYPE_RE = re.compile(
     r"(?:\[(?:(?P<bounded><=)?(?P<length>\d+))?\])?"
 )
 _FIELD_NAME_RE = re.compile(_NAME)
-
-
-class CollectedErrors:
-    """Mixin of an error that stands for several located errors found together.
-
-    Its message and location are those of the first one (with how many more), ``errors`` lists
-    every one and ``str()`` gives one line each. Put it before a :class:`RosaadlError` subclass:
-    ``class RosMessageError(CollectedErrors, ParseError)``; the ROSMOD readers' error uses it too.
-    """
-
-    errors: list
-
-    def __init__(self, errors: Sequence[RosaadlError]) -> None:
-        first = errors[0]
-        more = len(errors) - 1
-        message = first.message if not more else f"{first.message} (and {more} more)"
-        super().__init__(message, first.location, errors=list(errors))  # type: ignore[call-arg]
-
-    def __str__(self) -> str:
-        return "\n".join(str(e) for e in self.errors)
 
 
 class RosMessageError(CollectedErrors, ParseError):

@@ -13,6 +13,7 @@ import re
 from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.aadl_names import IDENTIFIER, RESERVED_WORDS
 from rosaadl.errors import ExportError, Location
 
 __all__ = [
@@ -39,7 +40,7 @@ __all__ = [
 ]
 
 # AS5506C 15.3: identifier ::= identifier_letter {[underline] letter_or_digit}*
-ID = r"[A-Za-z](?:_?[A-Za-z0-9])*"
+ID = IDENTIFIER
 ID_RE = re.compile(ID + r"\Z")
 QNAME_RE = re.compile(rf"{ID}(?:\s*::\s*{ID})*\Z")
 CLASSIFIER_RE = re.compile(rf"{ID}(?:\s*::\s*{ID})*(?:\s*\.\s*{ID})?\Z")
@@ -55,15 +56,6 @@ OWNER_RE = re.compile(
     rf"|{ID}(?:\s*::\s*{ID})+(?:\s*\.\s*{ID})?\Z"  # a qualified classifier
 )
 
-#: AADL reserved words (AS5506C 15.5); OSATE does not accept them as names.
-_RESERVED_TEXT = """
-    aadlboolean aadlinteger aadlreal aadlstring abstract access all and annex applies binding bus
-    calls classifier compute connections constant data delta device end enumeration event extends
-    false feature features flow flows group implementation in inherit initial inverse is list memory
-    mode modes none not of or out package parameter path port private process processor properties
-    property prototype prototypes provides public range record reference refined renames requires
-    self set sink source subcomponents subprogram system thread to true type units virtual with"""
-RESERVED_WORDS = frozenset(_RESERVED_TEXT.split())
 
 ACCESS_FEATURE_CATEGORY = {
     "busAccess": "bus",

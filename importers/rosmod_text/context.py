@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import logging
 
-from rosaadl.errors import Diagnostic, ImportFormatError, Location, RosaadlError
-from rosaadl.importers.ros_msg import CollectedErrors
+from rosaadl.errors import CollectedErrors, Diagnostic, ImportFormatError, Location, RosaadlError
 
 __all__ = ["RosmodImportError", "ImportContext"]
 

@@ -11,18 +11,10 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
+from rosaadl.aadl_names import RESERVED_WORDS  # never used as generated names
+
 __all__ = ["RESERVED_WORDS", "NameScope", "aadl_identifier"]
 
-#: AADL reserved words (SAE AS5506C 15.5); never used as generated names.
-_RESERVED_TEXT = """
-    aadlboolean aadlinteger aadlreal aadlstring abstract access all and annex applies binding bus
-    calls classifier compute connections constant data delta device end enumeration event extends
-    false feature features flow flows group implementation in inherit initial inverse is list memory
-    mode modes none not of or out package parameter path port private process processor properties
-    property prototype prototypes provides public range record reference refined renames requires
-    self set sink source subcomponents subprogram system thread to true type units virtual with
-"""
-RESERVED_WORDS = frozenset(_RESERVED_TEXT.split())
 
 _NOT_ALNUM = re.compile(r"[^A-Za-z0-9]+")
 
