@@ -24,6 +24,9 @@ from rosaadl.units import Quantity
 
 __all__ = ["port_connection"]
 
+_ASYNCHRONOUS = "ASYNCHRONOUS_COMMUNICATION_DEPENDENCY"
+_FIRST_MESSAGE = (("asynchronous_communication_protocol_property", "FIRST_MESSAGE"),)
+
 
 def port_connection(c: Collection, connection: EObject) -> None:
     """A port connection between two exported threads, as Cheddar sees it."""
@@ -83,14 +86,7 @@ def _pending_buffer(c: Collection, connection: EObject, src: Task, dst: Task) ->
         buffer.roles.append(_role(c, dst, "QUEUING_CONSUMER"))
         c.buffers_by_port[key] = (port, buffer)
         c.system.buffers.append(buffer)
-        c.system.dependencies.append(
-            Dependency(
-                "QUEUEING_BUFFER_DEPENDENCY",
-                ("task", dst.name),
-                ("buffer", buffer.name),
-                "FROM_OBJECT_TO_TASK",
-            )
-        )
+        _depends(c, "QUEUEING_BUFFER_DEPENDENCY", dst, ("buffer", buffer.name), "FROM_OBJECT_TO_TASK")
     else:
         buffer = found[1]
     if not any(r["task"] == src.name and r["role"] == "QUEUING_PRODUCER" for r in buffer.roles):
@@ -98,14 +94,7 @@ def _pending_buffer(c: Collection, connection: EObject, src: Task, dst: Task) ->
             sum(1 for r in buffer.roles if r["role"] == "QUEUING_PRODUCER"),
             _role(c, src, "QUEUING_PRODUCER"),
         )
-        c.system.dependencies.append(
-            Dependency(
-                "QUEUEING_BUFFER_DEPENDENCY",
-                ("task", src.name),
-                ("buffer", buffer.name),
-                "FROM_TASK_TO_OBJECT",
-            )
-        )
+        _depends(c, "QUEUEING_BUFFER_DEPENDENCY", src, ("buffer", buffer.name), "FROM_TASK_TO_OBJECT")
 
 
 def _role(c: Collection, task: Task, role: str) -> dict[str, Any]:
@@ -148,21 +137,17 @@ def _pending_message(c: Collection, connection: EObject, src: Task, dst: Task, b
             message.values["jitter"] = "0"
         c.messages_by_port[key] = message
         c.system.messages.append(message)
-        c.system.dependencies.append(
-            Dependency(
-                "ASYNCHRONOUS_COMMUNICATION_DEPENDENCY",
-                ("task", src.name),
-                ("message", message.name),
-                "FROM_TASK_TO_OBJECT",
-                [("asynchronous_communication_protocol_property", "FIRST_MESSAGE")],
-            )
-        )
-    c.system.dependencies.append(
-        Dependency(
-            "ASYNCHRONOUS_COMMUNICATION_DEPENDENCY",
-            ("task", dst.name),
-            ("message", message.name),
-            "FROM_OBJECT_TO_TASK",
-            [("asynchronous_communication_protocol_property", "FIRST_MESSAGE")],
-        )
-    )
+        _depends(c, _ASYNCHRONOUS, src, ("message", message.name), "FROM_TASK_TO_OBJECT", _FIRST_MESSAGE)
+    _depends(c, _ASYNCHRONOUS, dst, ("message", message.name), "FROM_OBJECT_TO_TASK", _FIRST_MESSAGE)
+
+
+def _depends(
+    c: Collection,
+    kind: str,
+    task: Task,
+    thing: tuple[str, str],
+    orientation: str,
+    extras: tuple[tuple[str, str], ...] = (),
+) -> None:
+    """A dependency of ``task`` on a buffer or message (``thing``: its kind and name)."""
+    c.system.dependencies.append(Dependency(kind, ("task", task.name), thing, orientation, list(extras)))

@@ -35,6 +35,7 @@ __all__ = [
     "leaf",
     "ref",
     "fields",
+    "shared_fields",
     "kept_fields",
     "aadl_scheduler",
     "task_defaults",
@@ -93,6 +94,19 @@ def fields(
         text = c.ctx.text(obj, spec, value)
         if text is not None:
             leaf(element, spec.tag, text)
+
+
+def shared_fields(
+    c: Collection, element: etree._Element, shared: SharedObject, table: Iterable[Field]
+) -> None:
+    """The fields of a buffer or message: its instance's when imported, else the values the
+    export made for it."""
+    if shared.imported:
+        fields(c, element, shared.instance, table)
+        return
+    for spec in table:
+        if spec.tag in shared.values:
+            leaf(element, spec.tag, shared.values[spec.tag])
 
 
 def kept_fields(c: Collection, element: etree._Element, obj: EObject | None, kinds: Iterable[str]) -> None:

@@ -20,6 +20,7 @@ from rosaadl.exporters.cheddar.fields import (
     fields,
     kept_fields,
     leaf,
+    shared_fields,
     task_defaults,
 )
 from rosaadl.exporters.cheddar.system import (
@@ -214,12 +215,7 @@ def _message(c: Collection, message: SharedObject) -> etree._Element:
     element = etree.Element("message")
     _positions(c, element, message.instance)
     leaf(element, "name", message.name)
-    if message.imported:
-        fields(c, element, message.instance, V2_MESSAGE_FIELDS)
-    else:
-        for spec in V2_MESSAGE_FIELDS:
-            if spec.tag in message.values:
-                leaf(element, spec.tag, message.values[spec.tag])
+    shared_fields(c, element, message, V2_MESSAGE_FIELDS)
     kept_fields(c, element, message.instance, ["message"])
     return element
 

@@ -21,6 +21,7 @@ from rosaadl.exporters.cheddar.fields import (
     kept_fields,
     leaf,
     ref,
+    shared_fields,
     task_defaults,
 )
 from rosaadl.exporters.cheddar.system import (
@@ -313,11 +314,7 @@ def _buffer(c: Collection, ids: Ids, buffer: SharedObject) -> etree._Element:
         leaf(element, "cpu_name", buffer.cpu)
     if buffer.space is not None:
         leaf(element, "address_space_name", buffer.space)
-    if buffer.imported:
-        fields(c, element, buffer.instance, BUFFER_FIELDS)
-    else:
-        for spec in BUFFER_FIELDS:
-            leaf(element, spec.tag, buffer.values[spec.tag])
+    shared_fields(c, element, buffer, BUFFER_FIELDS)
     roles = buffer_roles(c, buffer)
     if roles or not buffer.imported or c.ctx.props(buffer.instance).has(CP + "Buffer_Roles"):
         holder = etree.SubElement(element, "roles")
@@ -345,12 +342,7 @@ def _message(c: Collection, ids: Ids, message: SharedObject) -> etree._Element:
     leaf(element, "object_type", "MESSAGE_OBJECT_TYPE")
     leaf(element, "name", message.name)
     leaf(element, "message_type", kind)
-    if message.imported:
-        fields(c, element, message.instance, MESSAGE_FIELDS)
-    else:
-        for spec in MESSAGE_FIELDS:
-            if spec.tag in message.values:
-                leaf(element, spec.tag, message.values[spec.tag])
+    shared_fields(c, element, message, MESSAGE_FIELDS)
     kept_fields(c, element, message.instance, ["message"])
     return element
 

@@ -38,7 +38,7 @@ from rosaadl.importers.cheddar.values import (
 )
 from rosaadl.importers.cheddar.vocabulary import BINDING, CP, ENUMERATIONS, TIME_UNITS, Field
 
-__all__ = ["Entity", "ReadState", "same_target"]
+__all__ = ["Entity", "ReadState", "SectionReader", "entries", "same_target"]
 
 log = logging.getLogger("rosaadl.importers.cheddar")
 
@@ -395,3 +395,21 @@ class ReadState:
 def same_target(a: object, b: object) -> bool:
     """Do two binding targets (instances, or unresolved names) name the same processor?"""
     return a is b or (isinstance(a, str) and a == b)
+
+
+#: Reads one section of a document into the model.
+SectionReader = Callable[[ReadState, etree._Element], None]
+
+
+def entries(
+    tags: Iterable[str], what: str, read: Callable[[ReadState, etree._Element, int], None]
+) -> SectionReader:
+    """The reader of a section of entities: each entry with one of ``tags`` is read with ``read``
+    (with its place among them); the others are kept verbatim."""
+    allowed = tuple(tags)
+
+    def read_section(state: ReadState, section: etree._Element) -> None:
+        for index, item in enumerate(state.items(section, allowed, what)):
+            read(state, item, index)
+
+    return read_section

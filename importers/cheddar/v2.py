@@ -12,14 +12,12 @@ share are read by :mod:`rosaadl.importers.cheddar.entities`.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 from lxml import etree
 
 from rosaadl.importers.cheddar import entities
 from rosaadl.importers.cheddar.connections import dependency
 from rosaadl.importers.cheddar.scheduling import scheduler_element
-from rosaadl.importers.cheddar.state import Entity, ReadState
+from rosaadl.importers.cheddar.state import Entity, ReadState, SectionReader, entries
 from rosaadl.importers.cheddar.values import associate, str_value
 from rosaadl.importers.cheddar.vocabulary import (
     CP,
@@ -91,44 +89,36 @@ def dependencies(state: ReadState, section: etree._Element) -> None:
             dependency(state, item, index, kind, ends[1], ends[0], "FROM_OBJECT_TO_TASK", [])
 
 
-def networks(state: ReadState, section: etree._Element) -> None:
-    for item in state.items(section, ("network",), "network"):
-        entities.network(state, item, V2_NETWORK_FIELDS, "generic_network")
-
-
-def address_spaces(state: ReadState, section: etree._Element) -> None:
-    for item in state.items(section, ("address_space",), "address space"):
-        entities.address_space(state, item, V2_ADDRESS_SPACE_FIELDS)
-
-
-def tasks(state: ReadState, section: etree._Element) -> None:
-    for index, item in enumerate(state.items(section, ("task",), "task")):
-        entities.task(state, item, index, V2_TASK_FIELDS, "APERIODIC_TYPE")
-
-
-def resources(state: ReadState, section: etree._Element) -> None:
-    for index, item in enumerate(state.items(section, ("resource",), "resource")):
-        entities.resource(state, item, index, V2_RESOURCE_FIELDS)
-
-
-def buffers(state: ReadState, section: etree._Element) -> None:
-    for index, item in enumerate(state.items(section, ("buffer",), "buffer")):
-        entities.buffer(state, item, index, V2_BUFFER_FIELDS)
-
-
-def messages(state: ReadState, section: etree._Element) -> None:
-    for item in state.items(section, ("message",), "message"):
-        entities.message(state, item, V2_MESSAGE_FIELDS)
-
-
 #: The reader of each Cheddar 2 section (taken in the order of ``SECTIONS_V2``).
-SECTION_READERS: dict[str, Callable[[ReadState, etree._Element], None]] = {
+SECTION_READERS: dict[str, SectionReader] = {
     "processors": processors,
-    "networks": networks,
-    "address_spaces": address_spaces,
-    "tasks": tasks,
-    "resources": resources,
-    "buffers": buffers,
-    "messages": messages,
+    "networks": entries(
+        ("network",),
+        "network",
+        lambda state, item, _: entities.network(state, item, V2_NETWORK_FIELDS, "generic_network"),
+    ),
+    "address_spaces": entries(
+        ("address_space",),
+        "address space",
+        lambda state, item, _: entities.address_space(state, item, V2_ADDRESS_SPACE_FIELDS),
+    ),
+    "tasks": entries(
+        ("task",),
+        "task",
+        lambda state, item, index: entities.task(state, item, index, V2_TASK_FIELDS, "APERIODIC_TYPE"),
+    ),
+    "resources": entries(
+        ("resource",),
+        "resource",
+        lambda state, item, index: entities.resource(state, item, index, V2_RESOURCE_FIELDS),
+    ),
+    "buffers": entries(
+        ("buffer",),
+        "buffer",
+        lambda state, item, index: entities.buffer(state, item, index, V2_BUFFER_FIELDS),
+    ),
+    "messages": entries(
+        ("message",), "message", lambda state, item, _: entities.message(state, item, V2_MESSAGE_FIELDS)
+    ),
     "dependencies": dependencies,
 }

@@ -10,7 +10,6 @@ sections that Cheddar 2 and 3 share are read by :mod:`rosaadl.importers.cheddar.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 from lxml import etree
@@ -20,7 +19,7 @@ from rosaadl.importers.cheddar import entities
 from rosaadl.importers.cheddar.connections import dependency
 from rosaadl.importers.cheddar.document import canonical_xml, children, local
 from rosaadl.importers.cheddar.scheduling import scheduling_parameters
-from rosaadl.importers.cheddar.state import ReadState
+from rosaadl.importers.cheddar.state import ReadState, SectionReader, entries
 from rosaadl.importers.cheddar.values import associate, named_value, str_value
 from rosaadl.importers.cheddar.vocabulary import (
     ADDRESS_SPACE_FIELDS,
@@ -196,45 +195,39 @@ def dependencies(state: ReadState, section: etree._Element) -> None:
         dependency(state, item, index, kind, ends[0], ends[1], orientation, extra_values)
 
 
-def networks(state: ReadState, section: etree._Element) -> None:
-    for item in state.items(section, NETWORK_TAGS, "network"):
-        entities.network(state, item, NETWORK_FIELDS, local(item))
-
-
-def address_spaces(state: ReadState, section: etree._Element) -> None:
-    for item in state.items(section, ("address_space",), "address space"):
-        entities.address_space(state, item, ADDRESS_SPACE_FIELDS)
-
-
-def tasks(state: ReadState, section: etree._Element) -> None:
-    for index, item in enumerate(state.items(section, tuple(TASK_TAG_TYPES), "task")):
-        entities.task(state, item, index, TASK_FIELDS, TASK_TAG_TYPES[local(item)])
-
-
-def resources(state: ReadState, section: etree._Element) -> None:
-    for index, item in enumerate(state.items(section, tuple(RESOURCE_TAGS.values()), "resource")):
-        entities.resource(state, item, index, RESOURCE_FIELDS)
-
-
-def buffers(state: ReadState, section: etree._Element) -> None:
-    for index, item in enumerate(state.items(section, ("buffer",), "buffer")):
-        entities.buffer(state, item, index, BUFFER_FIELDS)
-
-
-def messages(state: ReadState, section: etree._Element) -> None:
-    for item in state.items(section, tuple(MESSAGE_TAGS.values()), "message"):
-        entities.message(state, item, MESSAGE_FIELDS)
-
-
 #: The reader of each Cheddar 3 section (taken in the order of ``SECTIONS_V3``).
-SECTION_READERS: dict[str, Callable[[ReadState, etree._Element], None]] = {
+SECTION_READERS: dict[str, SectionReader] = {
     "core_units": core_units,
     "processors": processors,
-    "networks": networks,
-    "address_spaces": address_spaces,
-    "tasks": tasks,
-    "resources": resources,
-    "buffers": buffers,
-    "messages": messages,
+    "networks": entries(
+        NETWORK_TAGS,
+        "network",
+        lambda state, item, _: entities.network(state, item, NETWORK_FIELDS, local(item)),
+    ),
+    "address_spaces": entries(
+        ("address_space",),
+        "address space",
+        lambda state, item, _: entities.address_space(state, item, ADDRESS_SPACE_FIELDS),
+    ),
+    "tasks": entries(
+        tuple(TASK_TAG_TYPES),
+        "task",
+        lambda state, item, index: entities.task(
+            state, item, index, TASK_FIELDS, TASK_TAG_TYPES[local(item)]
+        ),
+    ),
+    "resources": entries(
+        tuple(RESOURCE_TAGS.values()),
+        "resource",
+        lambda state, item, index: entities.resource(state, item, index, RESOURCE_FIELDS),
+    ),
+    "buffers": entries(
+        ("buffer",), "buffer", lambda state, item, index: entities.buffer(state, item, index, BUFFER_FIELDS)
+    ),
+    "messages": entries(
+        tuple(MESSAGE_TAGS.values()),
+        "message",
+        lambda state, item, _: entities.message(state, item, MESSAGE_FIELDS),
+    ),
     "dependencies": dependencies,
 }

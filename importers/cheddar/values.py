@@ -51,30 +51,29 @@ def _cls(name: str) -> Any:
     return cls
 
 
-def int_value(value: int, unit: str | None = None) -> EObject:
-    obj = _cls("IntegerValue")()
+def _holding(class_name: str, value: Any) -> EObject:
+    obj = _cls(class_name)()
     obj.value = value
+    return obj
+
+
+def int_value(value: int, unit: str | None = None) -> EObject:
+    obj = _holding("IntegerValue", value)
     if unit:
         obj.unit = unit
     return obj
 
 
 def real_value(value: float) -> EObject:
-    obj = _cls("RealValue")()
-    obj.value = value
-    return obj
+    return _holding("RealValue", value)
 
 
 def bool_value(value: bool) -> EObject:
-    obj = _cls("BooleanValue")()
-    obj.value = value
-    return obj
+    return _holding("BooleanValue", value)
 
 
 def str_value(value: str) -> EObject:
-    obj = _cls("StringValue")()
-    obj.value = value
-    return obj
+    return _holding("StringValue", value)
 
 
 def named_value(name: str) -> EObject:

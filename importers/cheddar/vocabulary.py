@@ -518,25 +518,36 @@ NETWORK_FIELDS = (
     ),
 )
 
-# Cheddar 2 tables (the order Cheddar 2's writer uses).
+
+def _pick(table: tuple[Field, ...], *tags: str) -> tuple[Field, ...]:
+    """The fields of ``table`` with ``tags``, in the order of ``tags``."""
+    by_tag = {spec.tag: spec for spec in table}
+    return tuple(by_tag[tag] for tag in tags)
+
+
+# Cheddar 2 tables (the order Cheddar 2's writer uses): the Cheddar 3 fields Cheddar 2 has,
+# and the few whose tag differs.
 V2_TASK_FIELDS = (
-    Field("capacity", CET, "capacity"),
-    Field("start_time", OFFSET, "time"),
-    Field("policy", POLICY, "enum:policy"),
-    Field("deadline", DEADLINE, "time"),
-    _f("criticality", "Criticality", "int"),
-    _f("context_switch_overhead", "Context_Switch_Overhead", "time"),
-    _f("blocking_time", "Bound_On_Data_Blocking_Time", "time"),
-    Field("priority", PRIORITY, "int"),
-    _f("text_memory_size", "Text_Memory_Size", "int"),
-    _f("stack_memory_size", "Stack_Memory_Size", "int"),
-    Field("period", PERIOD, "time"),
-    Field("jitter", JITTER, "time"),
-    _f("offsets", "Offsets", "offsets"),
-    _f("every", "Every", "int"),
-    _f("seed", "Dispatch_Seed_Value", "int"),
+    *_pick(
+        TASK_FIELDS,
+        "capacity",
+        "start_time",
+        "policy",
+        "deadline",
+        "criticality",
+        "context_switch_overhead",
+        "blocking_time",
+        "priority",
+        "text_memory_size",
+        "stack_memory_size",
+        "period",
+        "jitter",
+        "offsets",
+        "every",
+        "seed",
+    ),
     _f("predictable_seed", "Dispatch_Seed_Is_Predictable", "bool"),
-    _f("activation_rule", "Activation_Rule", "str"),
+    *_pick(TASK_FIELDS, "activation_rule"),
 )
 V2_ADDRESS_SPACE_FIELDS = ADDRESS_SPACE_FIELDS[:4]
 V2_RESOURCE_FIELDS = RESOURCE_FIELDS  # Cheddar 2 resources have the same fields
@@ -544,12 +555,7 @@ V2_BUFFER_FIELDS = (
     _f("qs", "Queueing_System_Type", "str"),
     _f("size", "Buffer_Size", "int"),
 )
-V2_MESSAGE_FIELDS = (
-    _f("size", "Message_Size", "int"),
-    _f("period", "Message_Period", "time"),
-    _f("deadline", "Message_Deadline", "time"),
-    _f("jitter", "Message_Jitter", "time"),
-    _f("response_time", "Response_Time", "time"),
-    _f("communication_time", "Communication_Time", "time"),
+V2_MESSAGE_FIELDS = _pick(
+    MESSAGE_FIELDS, "size", "period", "deadline", "jitter", "response_time", "communication_time"
 )
 V2_NETWORK_FIELDS = (_f("type", "Network_Type", "str"),)
