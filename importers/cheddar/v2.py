@@ -1,13 +1,14 @@
-"""Cheddar 2 documents (DTD style, ``.xml``): processors with a scheduler element, drawing
-positions, and dependencies written as two names.
+"""Cheddar 2 documents (DTD style, ``.xml``): processors with a scheduler element,
+dependencies written as two names, and the reader of each section.
 
 Cheddar 2 has no ids, core units or address-space scheduling parameters: a processor holds
-``<scheduler>`` whose attributes carry preemption, quantum and user-defined scheduler files;
-tasks, buffers and messages may carry ``x``/``y`` positions of Cheddar's editor; a dependency
-is ``<dependency from_type=... to_type=...>from to</dependency>``. Cheddar 2's reader does not
+``<scheduler>`` whose attributes carry preemption, quantum and user-defined scheduler files
+(:mod:`~rosaadl.importers.cheddar.scheduling`); a dependency is
+``<dependency from_type=... to_type=...>from to</dependency>``. Cheddar 2's reader does not
 check location names, so undeclared processors and address spaces are warnings
-(:meth:`~rosaadl.importers.cheddar.state.ReadState.lenient`). The sections that Cheddar 2 and 3
-share are read by :mod:`rosaadl.importers.cheddar.entities`.
+(:meth:`~rosaadl.importers.cheddar.state.ReadState.lenient`). The entities that Cheddar 2 and 3
+share (with the ``x``/``y`` positions of Cheddar 2's editor) are read by
+:mod:`rosaadl.importers.cheddar.entities`.
 """
 
 from __future__ import annotations

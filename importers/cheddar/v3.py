@@ -1,11 +1,11 @@
-"""Cheddar 3 ADL documents (``.xmlv3``): ids and refs, core units and processors, scheduling
-parameters, and dependency records.
+"""Cheddar 3 ADL documents (``.xmlv3``): ids and refs, core units and processors, dependency
+records, and the reader of each section.
 
 Cheddar 3 gives every entity an ``id`` and joins entities with ``ref`` attributes; its reader
 checks that ids are unique and that every ``ref`` resolves to an entity of the right kind, and
 so does this one. A mono-core processor refers to one core unit (its facts go on the processor
 instance); a multi-core processor refers to several, each a ``processor`` subcomponent. The
-sections that Cheddar 2 and 3 share are read by :mod:`rosaadl.importers.cheddar.entities`.
+entities that Cheddar 2 and 3 share are read by :mod:`rosaadl.importers.cheddar.entities`.
 """
 
 from __future__ import annotations
