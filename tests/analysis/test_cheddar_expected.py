@@ -24,6 +24,7 @@ from rosaadl.analysis.schedulability import (
 from rosaadl.analysis.simulation import simulate
 from rosaadl.analysis.tasks import Processor, Scheduler, Task, TaskSet, taskset_from_instance
 from rosaadl.fileio import parse_xml_bytes
+from rosaadl.importers.cheddar import load_cheddar
 
 pytestmark = pytest.mark.corpus
 
@@ -229,9 +230,7 @@ def test_best_fit_partition(corpus):
 
 
 def _import(corpus: Path, name: str) -> TaskSet:
-    from rosaadl.importers import cheddar
-
-    return taskset_from_instance(cheddar.load_cheddar(corpus / "cheddar" / name))
+    return taskset_from_instance(load_cheddar(corpus / "cheddar" / name))
 
 
 def test_importer_rm_case(corpus, rm_case):
