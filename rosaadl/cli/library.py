@@ -22,7 +22,7 @@ from typing import Any
 
 import click
 
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import Options, Report, output_option, pass_options
 from rosaadl.errors import Diagnostic, RosaadlError, UsageError
 from rosaadl.formats import expand_errors
 
@@ -225,14 +225,7 @@ def _unit_lines(info: dict[str, Any]) -> list[str]:
 @command.command("add-profile")
 @click.argument("measurements", type=click.Path(path_type=Path))
 @click.argument("inputs", nargs=-1, type=click.Path(path_type=Path))
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="Folder to write the profile packages into (<node package>_profiles.aadl).",
-)
+@output_option("Folder to write the profile packages into (<node package>_profiles.aadl).")
 @_format_option
 @pass_options
 def add_profile_command(
