@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from rosaadl import model
-from rosaadl.errors import NameResolutionError
+from rosaadl.errors import ModelError, NameResolutionError
 from rosaadl.resolution import (
     FEATURE_WORDS,
     PREDECLARED_PROPERTY_SETS,
@@ -154,6 +154,11 @@ def test_split_helpers():
     assert segments[2].matches(2) and not segments[2].matches(4)
     assert segments[0].matches([7]) and segments[0].matches(None)
     assert str(segments[2]) == "c[1 .. 3]"
+    assert split_path(None) == [] and split_path("") == []
+    with pytest.raises(ModelError):
+        split_path(5)
+    with pytest.raises(ModelError):
+        segments[1].matches(["2"])
 
 
 def test_feature_words_cover_every_feature_category():

@@ -55,7 +55,12 @@ def fixed_binding(
     elements); None when it names none. An unknown name is a :class:`ModelError`."""
     if in_binding is None:
         return None
-    items = [in_binding] if isinstance(in_binding, (str, EObject)) else list(in_binding)
+    if isinstance(in_binding, (str, EObject)):
+        items = [in_binding]
+    elif isinstance(in_binding, Iterable):
+        items = list(in_binding)
+    else:
+        raise ModelError(f"in_binding: expected classifiers or their names, got {in_binding!r}")
     classifiers = []
     for item in items:
         cls = item if isinstance(item, EObject) else resolver.classifier(item, context)

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from pyecore.ecore import EObject
 
+from rosaadl.errors import ModelError
+from rosaadl.model import is_a
 from rosaadl.resolution import Resolver
 from rosaadl.resolution.names import squeeze
 
@@ -42,10 +44,14 @@ class PropertyKeys:
     def key(self, name: str | EObject, context: EObject | None = None) -> str:
         """The key of a property given by name (``Period``, ``SEI::MIPSBudget``) or definition."""
         if isinstance(name, EObject):
+            if not is_a(name, "Property"):
+                raise ModelError(f"a {name.eClass.name} is not a property definition")
             display = self.resolver.qualified_name(name)
             key = display.lower()
             self._remember(key, name, display)
             return key
+        if not isinstance(name, str):
+            raise ModelError(f"expected a property or its name, got {name!r}")
         prop = self.resolver.property(name, context)
         display = self.resolver.qualified_name(prop) if prop is not None else squeeze(name)
         key = display.lower()

@@ -14,7 +14,7 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import model as _model
-from rosaadl.errors import Diagnostic
+from rosaadl.errors import Diagnostic, ModelError
 from rosaadl.properties import python_value as _python_value
 from rosaadl.resolution import Resolver
 
@@ -63,6 +63,8 @@ class PropertyLookup:
         classifier(s) the element is bound to, which makes ``in binding`` associations apply.
         Instance objects that carry resolved values (as made by instantiation) answer from them.
         """
+        if not isinstance(element, EObject):
+            raise ModelError(f"no property lookup for {element!r}: expected a model element")
         instance = _model.is_a(element, "InstanceObject")
         key = self.keys.key(prop, None if instance else element)
         if instance:

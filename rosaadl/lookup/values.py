@@ -192,13 +192,7 @@ class ValueBuilder:
         if kind == "ListValue":
             inner = resolver.element_type_once(ptype)
             items = [self._compile(item, inner, context, constants) for item in expr.ownedItems]
-
-            def make_list(anchor, evaluate, reference):
-                made = factory.new("ListValue")
-                factory.extend(made, "ownedItems", [make(anchor, evaluate, reference) for make in items])
-                return made
-
-            return make_list
+            return _maker_of_many(factory, kind, "ownedItems", items)
         if kind == "RecordValue":
             fields = []
             for fv in expr.ownedFields:
@@ -224,15 +218,7 @@ class ValueBuilder:
         if kind == "OperationValue":
             operator = expr.operator
             operands = [self._compile(o, ptype, context, constants) for o in expr.ownedOperands]
-
-            def make_operation(anchor, evaluate, reference):
-                made = factory.new("OperationValue", operator=operator)
-                factory.extend(
-                    made, "ownedOperands", [make(anchor, evaluate, reference) for make in operands]
-                )
-                return made
-
-            return make_operation
+            return _maker_of_many(factory, kind, "ownedOperands", operands, operator=operator)
         raise ModelError(f"unknown property value kind {kind}")
 
     def _compile_named(
@@ -316,6 +302,18 @@ class ValueBuilder:
         association = factory.new("PropertyAssociation", property=self.keys.display_name(key))
         factory.extend(association, "ownedValues", modal)
         return association
+
+
+def _maker_of_many(factory: Factory, kind: str, feature: str, parts: list[_Make], **values: Any) -> _Make:
+    """The template of a value of class ``kind`` holding the values ``parts`` make in ``feature``
+    (a list's items, an operation's operands)."""
+
+    def make(anchor, evaluate, reference):
+        made = factory.new(kind, **values)
+        factory.extend(made, feature, [part(anchor, evaluate, reference) for part in parts])
+        return made
+
+    return make
 
 
 def select_modal(values: ModalValues, in_mode: str | None) -> ModalValues:

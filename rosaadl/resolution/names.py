@@ -14,6 +14,8 @@ import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
+from rosaadl.errors import ModelError
+
 __all__ = [
     "FEATURE_WORDS",
     "PathSegment",
@@ -66,7 +68,10 @@ class PathSegment:
         values = list(index) if isinstance(index, Iterable) else ([index] if index else [])
         if len(values) < len(self.ranges):
             return False
-        return all(low <= value <= high for (low, high), value in zip(self.ranges, values, strict=False))
+        try:
+            return all(low <= value <= high for (low, high), value in zip(self.ranges, values, strict=False))
+        except TypeError:
+            raise ModelError(f"not an array index: {index!r}") from None
 
     def __str__(self) -> str:
         text = self.name
@@ -77,8 +82,12 @@ class PathSegment:
 
 def split_path(text: str) -> list[PathSegment]:
     """``"a.b[2].c"`` → segments ``a``, ``b[2]``, ``c`` (annex elements are kept as one name)."""
+    if not isinstance(text, str):
+        if text is not None:
+            raise ModelError(f"expected a path, got {text!r}")
+        text = ""
     segments: list[PathSegment] = []
-    for raw in _split_dots(text or ""):
+    for raw in _split_dots(text):
         raw = raw.strip()
         if not raw:
             continue
