@@ -128,12 +128,11 @@ class ValueBuilder:
         resolver = self.resolver
         factory = self.factory
         if kind in ("IntegerValue", "RealValue"):
-            number = expr.value
             unit = expr.unit
             if unit:
                 unit = resolver.unit_literal(ptype, unit) or _STANDARD_UNITS.spelling(unit)
-                return lambda anchor, evaluate, reference: factory.new(kind, value=number, unit=unit)
-            return lambda anchor, evaluate, reference: factory.new(kind, value=number)
+                return _maker_of(factory, kind, value=expr.value, unit=unit)
+            return _maker_of(factory, kind, value=expr.value)
         if kind == "RangeValue":
             inner = ptype
             if inner is not None and _model.is_a(inner, "RangeType"):
@@ -156,11 +155,9 @@ class ValueBuilder:
 
             return make_range
         if kind == "BooleanValue":
-            flag = bool(expr.value)
-            return lambda anchor, evaluate, reference: factory.new(kind, value=flag)
+            return _maker_of(factory, kind, value=bool(expr.value))
         if kind == "StringValue":
-            text = expr.value
-            return lambda anchor, evaluate, reference: factory.new(kind, value=text)
+            return _maker_of(factory, kind, value=expr.value)
         if kind == "NamedValue":
             return self._compile_named(expr, ptype, context, constants)
         if kind == "ReferenceValue":
@@ -182,13 +179,12 @@ class ValueBuilder:
 
             return make_reference
         if kind == "InstanceReferenceValue":
-            target = expr.referencedInstanceObject
-            return lambda anchor, evaluate, reference: factory.new(kind, referencedInstanceObject=target)
+            return _maker_of(factory, kind, referencedInstanceObject=expr.referencedInstanceObject)
         if kind == "ClassifierValue":
             name = expr.classifier
             found = resolver.classifier(name, context) if context is not None else None
             qualified = resolver.qualified_name(found) if found is not None else name
-            return lambda anchor, evaluate, reference: factory.new(kind, classifier=qualified)
+            return _maker_of(factory, kind, classifier=qualified)
         if kind == "ListValue":
             inner = resolver.element_type_once(ptype)
             items = [self._compile(item, inner, context, constants) for item in expr.ownedItems]
@@ -213,8 +209,7 @@ class ValueBuilder:
 
             return make_record
         if kind == "ComputedValue":
-            function = expr.function
-            return lambda anchor, evaluate, reference: factory.new(kind, function=function)
+            return _maker_of(factory, kind, function=expr.function)
         if kind == "OperationValue":
             operator = expr.operator
             operands = [self._compile(o, ptype, context, constants) for o in expr.ownedOperands]
@@ -228,13 +223,10 @@ class ValueBuilder:
         factory = self.factory
         name = expr.name or ""
 
-        def literal_maker(text: str) -> _Make:
-            return lambda anchor, evaluate, reference: factory.new("NamedValue", name=text)
-
         if "::" not in name:
             literal = resolver.enumeration_literal(ptype, name)
             if literal is not None:
-                return literal_maker(literal)
+                return _maker_of(factory, "NamedValue", name=literal)
         const = resolver.constant(name, context) if context is not None else resolver.constant(name)
         if const is not None and const.value is not None and id(const) not in constants:
             return self._compile(
@@ -264,7 +256,7 @@ class ValueBuilder:
                 return values[0][0]
 
             return make_property
-        return literal_maker(name)
+        return _maker_of(factory, "NamedValue", name=name)
 
     def _where(self, context: EObject | None, anchor: Any) -> Location:
         path = None
@@ -302,6 +294,11 @@ class ValueBuilder:
         association = factory.new("PropertyAssociation", property=self.keys.display_name(key))
         factory.extend(association, "ownedValues", modal)
         return association
+
+
+def _maker_of(factory: Factory, kind: str, **values: Any) -> _Make:
+    """The template of a value of class ``kind`` with fixed ``values`` (a number, a string, ...)."""
+    return lambda anchor, evaluate, reference: factory.new(kind, **values)
 
 
 def _maker_of_many(factory: Factory, kind: str, feature: str, parts: list[_Make], **values: Any) -> _Make:
