@@ -117,7 +117,7 @@ def _new_feature(
     )
     if fclassifier is None:
         name = resolver.effective_attribute(feature, "classifier")
-        if name and category != "featureGroup" and not resolver._is_prototype(feature, name):
+        if name and category != "featureGroup" and not resolver.is_prototype(feature, name):
             st.warn(f"classifier {name} of feature {feature.name} not found", component_path(ci), feature)
     fi = FeatureMirror(
         obj,
@@ -133,7 +133,7 @@ def _new_feature(
     fi.fgt = fgt
     if category == "featureGroup":
         name = resolver.effective_attribute(feature, "classifier")
-        if fgt is None and name and not resolver._is_prototype(feature, name):
+        if fgt is None and name and not resolver.is_prototype(feature, name):
             message = f"feature group type {name} of feature group {feature.name} not found"
             if st.strict:
                 st.error(message, component_path(ci), feature)
