@@ -44,8 +44,10 @@ Reference = Callable[[Any, str], "EObject | None"]
 _Make = Callable[[Any, Any, Any], EObject]
 
 
-class NoValue(Exception):
-    """A value names a property (``Deadline => Period``) that has no value for the object."""
+class NoValue(ModelError):
+    """A value names a property (``Deadline => Period``) that has no value for the object (or
+    depends on itself). The lookup turns it into "no value"; one that escapes is a located
+    model error like any other."""
 
 
 class ValueBuilder:
