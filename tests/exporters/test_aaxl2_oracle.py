@@ -361,7 +361,7 @@ def test_the_containment_lists_and_classes_the_exporter_names_are_osate_s(corpus
     the declaration class it names (per classifier kind, as OSATE's Xtext model holds members)."""
     from osate_conformance import resource_set
 
-    from rosaadl.exporters import aaxl2 as exporter
+    from rosaadl.exporters.aaxl2 import vocabulary
 
     rset = resource_set(_metamodel(corpus))
     aadl2 = rset.metamodel_registry["http://aadl.info/AADL/2.0"]
@@ -373,15 +373,15 @@ def test_the_containment_lists_and_classes_the_exporter_names_are_osate_s(corpus
         }
 
     feature_lists = lists("AbstractType") | lists("FeatureGroupType") | lists("SubprogramType")
-    for cls in set(exporter._FEATURE_CLASS.values()):
+    for cls in set(vocabulary.FEATURE_CLASS.values()):
         assert feature_lists.get(f"owned{cls}") == cls
         assert not aadl2.getEClassifier(cls).abstract
     implementation_lists = lists("AbstractImplementation")
-    for stem in exporter._CATEGORY_CLASS.values():
+    for stem in vocabulary.CATEGORY_CLASS.values():
         assert implementation_lists.get(f"owned{stem}Subcomponent") == f"{stem}Subcomponent"
         for suffix in ("Type", "Implementation"):
             assert not aadl2.getEClassifier(stem + suffix).abstract
-    for cls in exporter._CONNECTION_CLASS.values():
+    for cls in vocabulary.CONNECTION_CLASS.values():
         assert implementation_lists.get(f"owned{cls}") == cls
     for name, cls in (("ownedMode", "Mode"), ("ownedModeTransition", "ModeTransition")):
         assert implementation_lists.get(name) == cls and lists("AbstractType").get(name) == cls
