@@ -55,6 +55,8 @@ _CONNECTION_TAGS = {
     "ownedParameterConnection": "parameterConnection",
 }
 _CATEGORY_OF = {c.lower(): c[0].lower() + c[1:] for c in CATEGORIES}
+# ``owned<Category>Subcomponent`` → the category's class-name stem
+_SUBCOMPONENT_TAGS = {f"owned{c}Subcomponent": c for c in CATEGORIES}
 
 
 class DeclarativeReader:
@@ -202,10 +204,8 @@ class DeclarativeReader:
             tag = child.tag
             if tag in _FEATURE_TAGS and obj.eClass.findEStructuralFeature("features") is not None:
                 obj.features.append(self.feature(child, _FEATURE_TAGS[tag]))
-            elif (
-                tag.endswith("Subcomponent") and tag.startswith("owned") and local.endswith("Implementation")
-            ):
-                obj.subcomponents.append(self.subcomponent(child, tag[len("owned") : -len("Subcomponent")]))
+            elif tag in _SUBCOMPONENT_TAGS and local.endswith("Implementation"):
+                obj.subcomponents.append(self.subcomponent(child, _SUBCOMPONENT_TAGS[tag]))
             elif tag in _CONNECTION_TAGS and local.endswith("Implementation"):
                 obj.connections.append(self.connection(child, _CONNECTION_TAGS[tag]))
             elif tag == "ownedPropertyAssociation":
