@@ -91,7 +91,7 @@ def emit_value(
     w: Writer, indent: str, tag: str, expr: EObject, info: TypeInfo | None, owner: EObject
 ) -> None:
     out = w.out
-    kind = expr.eClass.name
+    kind = expr.eClass.name  # each value class is written as its own aadl2 class
     if kind in ("IntegerValue", "RealValue"):
         value = value_of(expr, "value") or 0
         if kind == "IntegerValue":

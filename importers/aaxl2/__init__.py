@@ -20,7 +20,8 @@ What the file format gives, and how it is decoded:
 * Units, enumeration literals and record fields are positional hrefs into the property set
   that declares them. For OSATE's predeclared sets they are decoded with the per-era tables
   of :mod:`rosaadl.importers.osate_eras`; the era is chosen from the URI forms and checked
-  against every such href (see :func:`~rosaadl.importers.osate_eras.choose_era`) and recorded on the result.
+  against every such href (see :func:`~rosaadl.importers.osate_eras.choose_era`) and recorded
+  on the result.
   Hrefs into other property sets keep their ``uri#fragment`` text and are reported once
   per property set.
 * EMF omits default values: a component without ``category`` is abstract, a feature without
@@ -29,12 +30,13 @@ What the file format gives, and how it is decoded:
 
 Speed: pyecore's normal object construction costs about 25 µs per object (feature lookups,
 value checks, notifications to listeners a new object cannot have yet). The reader builds
-objects through :class:`FastFactory`, which writes the state pyecore would (attribute value
-holders, container and containment feature; ``_isset``, which saving reads, and inverse
-references are made on first read from those) directly, in about a tenth of that time, and
-pauses the cyclic garbage collector while it builds (:func:`gc_paused`). The file is parsed
-without its indentation (half the nodes), and the parsed document is freed last
-(:meth:`.document.Reader.release`), so that glibc does not merge its freed nodes within the call.
+objects through :class:`~rosaadl.bulk.FastFactory`, which writes the state pyecore would
+(attribute value holders, container and containment feature; ``_isset``, which saving reads,
+and inverse references are made on first read from those) directly, in about a tenth of that
+time, and pauses the cyclic garbage collector while it builds (:func:`~rosaadl.bulk.gc_paused`).
+The file is parsed without its indentation (half the nodes), and the parsed document is freed
+last (:meth:`.document.Reader.release`), so that glibc does not merge its freed nodes within
+the call.
 
 The package, one idea per module:
 

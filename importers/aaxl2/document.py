@@ -55,7 +55,7 @@ class Reader:
         self.ids: dict[str, EObject] = {}
         self.roots: list[EObject] = []
         # reference attributes to resolve once every object exists:
-        # (object, slot, text, element, attribute, many, names_of)
+        # (object, slot, text, line of its element, attribute, many, names_of)
         self.pending: list[tuple] = []
         # positional literal hrefs into property sets, decoded once the era is known:
         # (uri, fragment, role, property, field href) → [(object, feature name)]

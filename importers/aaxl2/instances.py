@@ -339,7 +339,7 @@ def annex_instance(r: Reader, el: etree._Element) -> EObject:
     if r.has_ids:
         r.register_id(obj, el)
     fast.set_value(obj, f["AnnexInstance.name"], el.get("name") or "")
-    # the file's indentation is not kept (see :func:`.load.load_document`): the text is indented on its own
+    # the file's indentation is not kept (see load.load_document): the text is indented on its own
     text = etree.tostring(el, encoding="unicode", with_tail=False, pretty_print=True).rstrip("\n")
     fast.set_value(obj, f["AnnexInstance.text"], text)
     return obj

@@ -46,6 +46,7 @@ def decode_literals(r: Reader) -> osate_eras.EraChoice:
                 opaque[uri] = opaque.get(uri, 0) + len(targets)
             continue
         for obj, feature_name in targets:
+            # the value holder the reader filled (FastFactory): rewritten in place, as it was made
             obj.__dict__[feature_name]._value = decoded
     for href, (count, why) in sorted(undecoded.items()):
         r.warn(
