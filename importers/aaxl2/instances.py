@@ -267,85 +267,74 @@ def connection_reference(r: Reader, el: etree._Element) -> EObject:
 
 def flow_specification(r: Reader, el: etree._Element) -> EObject:
     f, fast = r.f, r.fast
-    obj = r.new(r.cls["FlowSpecificationInstance"])
-    if r.has_ids:
-        r.register_id(obj, el)
-    name = el.get("name") or ""
-    fast.set_value(obj, f["FlowSpecificationInstance.name"], name)
+    obj = _named_object(r, el, "FlowSpecificationInstance")
     has_source, has_destination = el.get("source") is not None, el.get("destination") is not None
     kind = "path" if has_source and has_destination else "sink" if has_source else "source"
     fast.set_value(obj, f["FlowSpecificationInstance.kind"], r.enum("FlowKind", kind, el, "kind"))
     r.ref_later(obj, f["FlowSpecificationInstance.source"], el, "source")
     r.ref_later(obj, f["FlowSpecificationInstance.destination"], el, "destination")
-    owned_pas_and_links(r, obj, el, "FlowSpecificationInstance", "flowSpecification")
+    _owned_pas_and_links(r, obj, el, "FlowSpecificationInstance", "flowSpecification")
     return obj
 
 
 def end_to_end_flow(r: Reader, el: etree._Element) -> EObject:
     f, fast = r.f, r.fast
-    obj = r.new(r.cls["EndToEndFlowInstance"])
-    if r.has_ids:
-        r.register_id(obj, el)
-    name = el.get("name") or ""
-    fast.set_value(obj, f["EndToEndFlowInstance.name"], name)
-    fast.set_value(obj, f["EndToEndFlowInstance.flow"], name)
+    obj = _named_object(r, el, "EndToEndFlowInstance")
+    fast.set_value(obj, f["EndToEndFlowInstance.flow"], el.get("name") or "")
     r.ref_later(obj, f["EndToEndFlowInstance.flowElements"], el, "flowElement", many=True)
-    owned_pas_and_links(r, obj, el, "EndToEndFlowInstance", "endToEndFlow")
+    _owned_pas_and_links(r, obj, el, "EndToEndFlowInstance", "endToEndFlow")
     return obj
 
 
 def mode_instance(r: Reader, el: etree._Element) -> EObject:
     f, fast = r.f, r.fast
-    obj = r.new(r.cls["ModeInstance"])
-    if r.has_ids:
-        r.register_id(obj, el)
-    name = el.get("name") or ""
-    fast.set_value(obj, f["ModeInstance.name"], name)
-    fast.set_value(obj, f["ModeInstance.mode"], name)
+    obj = _named_object(r, el, "ModeInstance")
+    fast.set_value(obj, f["ModeInstance.mode"], el.get("name") or "")
     if el.get("initial") == "true":
         fast.set_value(obj, f["ModeInstance.initial"], True)
-    owned_pas_and_links(r, obj, el, "ModeInstance", "modeInstance")
+    _owned_pas_and_links(r, obj, el, "ModeInstance", "modeInstance")
     return obj
 
 
 def mode_transition(r: Reader, el: etree._Element) -> EObject:
-    f, fast = r.f, r.fast
-    obj = r.new(r.cls["ModeTransitionInstance"])
-    if r.has_ids:
-        r.register_id(obj, el)
-    fast.set_value(obj, f["ModeTransitionInstance.name"], el.get("name") or "")
+    f = r.f
+    obj = _named_object(r, el, "ModeTransitionInstance")
     r.ref_later(obj, f["ModeTransitionInstance.source"], el, "source")
     r.ref_later(obj, f["ModeTransitionInstance.destination"], el, "destination")
     r.ref_later(obj, f["ModeTransitionInstance.triggers"], el, "trigger", many=True)
-    owned_pas_and_links(r, obj, el, "ModeTransitionInstance", "modeTransitionInstance")
+    _owned_pas_and_links(r, obj, el, "ModeTransitionInstance", "modeTransitionInstance")
     return obj
 
 
 def system_operation_mode(r: Reader, el: etree._Element) -> EObject:
-    f, fast = r.f, r.fast
-    obj = r.new(r.cls["SystemOperationMode"])
-    if r.has_ids:
-        r.register_id(obj, el)
-    fast.set_value(obj, f["SystemOperationMode.name"], el.get("name") or "")
-    r.ref_later(obj, f["SystemOperationMode.currentModes"], el, "currentMode", many=True)
+    obj = _named_object(r, el, "SystemOperationMode")
+    r.ref_later(obj, r.f["SystemOperationMode.currentModes"], el, "currentMode", many=True)
     for child in el:
         r.unknown(child, "systemOperationMode")
     return obj
 
 
 def annex_instance(r: Reader, el: etree._Element) -> EObject:
-    f, fast = r.f, r.fast
-    obj = r.new(r.cls["AnnexInstance"])
-    if r.has_ids:
-        r.register_id(obj, el)
-    fast.set_value(obj, f["AnnexInstance.name"], el.get("name") or "")
+    obj = _named_object(r, el, "AnnexInstance")
     # the file's indentation is not kept (see load.load_document): the text is indented on its own
     text = etree.tostring(el, encoding="unicode", with_tail=False, pretty_print=True).rstrip("\n")
-    fast.set_value(obj, f["AnnexInstance.text"], text)
+    r.fast.set_value(obj, r.f["AnnexInstance.text"], text)
     return obj
 
 
-def owned_pas_and_links(r: Reader, obj: EObject, el: etree._Element, cname: str, where: str) -> None:
+def _named_object(r: Reader, el: etree._Element, cname: str) -> EObject:
+    """A new object of class ``cname`` for ``el`` (indexed by its ``xmi:id``), named as ``el``;
+    for the elements a file holds few of (flows, modes, annexes)."""
+    obj = r.new(r.cls[cname])
+    if r.has_ids:
+        r.register_id(obj, el)
+    r.fast.set_value(obj, r.f[f"{cname}.name"], el.get("name") or "")
+    return obj
+
+
+def _owned_pas_and_links(r: Reader, obj: EObject, el: etree._Element, cname: str, where: str) -> None:
+    """The property associations of ``el`` into ``obj``; its links into the declarative model are
+    only noted (``where`` names ``el`` in warnings)."""
     pas = []
     for child in el:
         tag = child.tag
