@@ -34,13 +34,15 @@ from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
-from rosaadl.analysis.resources import (
+from rosaadl.analysis.instance_values import (
     PropertyReader,
     SystemMode,
     category_of,
     instance_root,
     system_modes,
 )
+from rosaadl.analysis.registry import Analysis, register
+from rosaadl.analysis.rendering import short_path, table
 from rosaadl.errors import Diagnostic, Location
 
 __all__ = [
@@ -632,3 +634,57 @@ def port_loads(source: Any) -> list[PortLoad]:
     root = instance_root(source)
     analysis = _BusAnalysis(root, [])
     return port_loads_of(analysis.components, analysis.reader, system_modes(root)[0])
+
+
+# =============================================================================== renderings
+
+
+def _bus_rows(rows: list[list[Any]], bus: Any, depth: int) -> None:
+    indent = "  " * depth
+    rows.append(
+        [
+            indent + short_path(bus.path),
+            bus.capacity_kbps,
+            bus.budget_kbps,
+            bus.required_kbps,
+            bus.actual_kbps,
+        ]
+    )
+    for vb in bus.virtual_buses:
+        _bus_rows(rows, vb, depth + 1)
+    for conn in bus.connections:
+        rows.append([indent + "  " + conn.name, "", conn.budget_kbps, "", conn.actual_kbps])
+    for group in bus.broadcasts:
+        rows.append([indent + "  " + group.label, "", group.budget_kbps, "", group.actual_kbps])
+
+
+def bus_load_text(result: BusLoadResult) -> list[str]:
+    """The ``Bus load (KB/s)`` section of the text report."""
+    lines = ["Bus load (KB/s)", ""]
+    for som in result.modes:
+        if som.label:
+            lines.append(f"in modes {som.label}")
+        rows: list[list[Any]] = []
+        for bus in som.buses:
+            _bus_rows(rows, bus, 0)
+        lines += table(["bus / virtual bus / connection", "capacity", "budget", "required", "actual"], rows)
+        lines.append("")
+    if result.ports:
+        rows = [[short_path(p.path), p.data_size_bytes, p.rate_per_second, p.kbytesps] for p in result.ports]
+        lines += table(["outgoing port", "Data_Size bytes", "rate /s", "KB/s"], rows)
+        lines.append("")
+    return lines
+
+
+register(
+    Analysis(
+        name="bus",
+        json_key="bus",
+        order=30,
+        run=lambda context: analyze_bus_load(context.root),
+        text=bus_load_text,
+        csv=lambda result, base: {f"{base}__BusLoad.csv": result.csv_text()},
+        aliases=("busload",),
+        description="load of every bus and virtual bus (OSATE's bus load analysis and its CSV report)",
+    )
+)

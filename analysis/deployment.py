@@ -30,15 +30,18 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from rosaadl.analysis.resources import (
+from rosaadl.analysis.demand import ResourceDemand
+from rosaadl.analysis.instance_values import (
     PropertyReader,
-    _Analysis,
     category_of,
     instance_root,
     system_modes,
 )
+from rosaadl.analysis.registry import Analysis, AnalysisContext, register
+from rosaadl.analysis.rendering import csv_text, fmt, short_path, table
 from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
 from rosaadl.errors import Diagnostic, Location, ModelError
+from rosaadl.model import component_instances
 
 __all__ = [
     "Placement",
@@ -528,7 +531,7 @@ def search_deployment(
 
     root = instance_root(source)
     diagnostics: list[Diagnostic] = []
-    analysis = _Analysis(root, diagnostics)
+    analysis = ResourceDemand(root, diagnostics)
     reader = analysis.reader
     mode = system_modes(root)[0]
 
@@ -553,7 +556,7 @@ def search_deployment(
             ci
             for ci in components
             if category_of(ci) == "process"
-            and any(category_of(t) == "thread" for t in _descendants(ci))
+            and any(category_of(t) == "thread" for t in component_instances(ci, include_root=False))
             and mode.active(ci)
         ]
     else:
@@ -574,7 +577,7 @@ def search_deployment(
     proc_list = []
     for obj in process_objs:
         threads = []
-        for t in _descendants(obj):
+        for t in component_instances(obj, include_root=False):
             if category_of(t) != "thread":
                 continue
             load = analysis.thread_load(t, mode)
@@ -770,11 +773,55 @@ def _key(problem: _Problem, assignment: Sequence[int]) -> tuple[Fraction, Fracti
     return (max(loads, default=Fraction(0)), sum((x * x for x in loads), Fraction(0)))
 
 
-def _descendants(ci: Any) -> list[Any]:
-    out = []
-    stack = list(reversed(list(ci.componentInstances)))
-    while stack:
-        current = stack.pop()
-        out.append(current)
-        stack.extend(reversed(list(current.componentInstances)))
-    return out
+# =============================================================================== report
+
+
+def deployment_text(result: DeploymentResult) -> list[str]:
+    """The ``Deployment search`` section of the text report."""
+    lines = [
+        f"Deployment search ({result.method}{', optimal' if result.optimal else ''}, "
+        f"max load {fmt(result.max_load * 100)} %, {'feasible' if result.feasible else 'not feasible'})",
+        "",
+    ]
+    rows = [
+        [
+            short_path(c.path),
+            c.capacity_mips,
+            c.load_percent,
+            c.schedulable,
+            ", ".join(short_path(p) for p in c.processes),
+        ]
+        for c in result.cores
+    ]
+    lines += table(["processor", "capacity MIPS", "load %", "schedulable", "processes"], rows)
+    lines.append("")
+    lines += result.associations()
+    lines.append("")
+    return lines
+
+
+def deployment_csv(result: DeploymentResult, base: str) -> dict[str, str]:
+    """``<base>__Deployment.csv``: the processor proposed for every process, with its load."""
+    rows: list[list[Any]] = [["Process", "Processor", "Load (%)"]]
+    for p in result.placements:
+        rows.append([p.process, p.processor, p.load * 100])
+    return {f"{base}__Deployment.csv": csv_text(rows)}
+
+
+def _run(context: AnalysisContext) -> DeploymentResult:
+    return search_deployment(context.root, **(context.options.get("deployment") or {}))
+
+
+register(
+    Analysis(
+        name="deploy",
+        json_key="deployment",
+        order=70,
+        run=_run,
+        text=deployment_text,
+        csv=deployment_csv,
+        aliases=("deployment",),
+        default=False,
+        description="a search for bindings of processes to cores that pass the analyses (proposes)",
+    )
+)

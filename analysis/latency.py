@@ -32,7 +32,7 @@ from fractions import Fraction
 from typing import Any
 
 from rosaadl.analysis.busload import data_size_kbyte
-from rosaadl.analysis.resources import (
+from rosaadl.analysis.instance_values import (
     PropertyReader,
     SystemMode,
     bound_processor,
@@ -40,7 +40,10 @@ from rosaadl.analysis.resources import (
     instance_root,
     system_modes,
 )
+from rosaadl.analysis.registry import Analysis, AnalysisContext, register
+from rosaadl.analysis.rendering import csv_text, fmt, table
 from rosaadl.errors import Diagnostic, Location, ModelError
+from rosaadl.model import component_instances
 
 __all__ = ["LatencyHop", "LatencyChain", "LatencyResult", "analyze_latency", "thread_chains"]
 
@@ -144,20 +147,10 @@ def _thread_of(end: Any) -> Any | None:
     return None
 
 
-def _all_components(root: Any) -> list[Any]:
-    out = []
-    stack = [root]
-    while stack:
-        ci = stack.pop()
-        out.append(ci)
-        stack.extend(reversed(list(ci.componentInstances)))
-    return out
-
-
 def _thread_links(root: Any, mode: SystemMode) -> list[tuple[Any, Any, Any]]:
     """(source thread, connection, destination thread) of every port connection between threads."""
     links = []
-    for ci in _all_components(root):
+    for ci in component_instances(root):
         for conn in ci.connectionInstances:
             kind = getattr(getattr(conn, "kind", None), "name", "")
             if kind not in ("portConnection", "") or not mode.active(conn):
@@ -184,7 +177,7 @@ def thread_chains(source: Any, limit: int = 100) -> list[list[Any]]:
         has_input.add(id(dst))
         threads.setdefault(id(src), src)
         threads.setdefault(id(dst), dst)
-    order = [ci for ci in _all_components(root) if id(ci) in threads]
+    order = [ci for ci in component_instances(root) if id(ci) in threads]
     chains: list[list[Any]] = []
 
     def extend(path: list[Any]) -> None:
@@ -460,7 +453,7 @@ def analyze_latency(
     analysis = _Latency(root, _wcrt_map(root, schedulability), diagnostics)
     specs: list[tuple[str, list[Any], Fraction | None]] = []
     if chains is None:
-        flows = [f for ci in _all_components(root) for f in ci.endToEndFlows]
+        flows = [f for ci in component_instances(root) for f in ci.endToEndFlows]
         chains = flows or thread_chains(root, limit)
     for item in chains:
         if hasattr(item, "flowElements"):
@@ -516,3 +509,45 @@ def analyze_latency(
         results.append(chain)
     log.debug("latency of %d chains", len(results))
     return LatencyResult(tuple(results), tuple(diagnostics))
+
+
+# =============================================================================== report
+
+
+def latency_text(result: LatencyResult) -> list[str]:
+    """The ``End-to-end latency`` section of the text report."""
+    lines = ["End-to-end latency (us)", ""]
+    rows = [[c.name, c.best_us, c.worst_us, c.expected_us, c.met] for c in result.chains]
+    lines += table(["chain", "best", "worst", "expected", "met"], rows)
+    lines.append("")
+    return lines
+
+
+def latency_csv(result: LatencyResult, base: str) -> dict[str, str]:
+    """``<base>__Latency.csv``: every hop of every chain, then the chain's total."""
+    rows: list[list[Any]] = [["Chain", "Element", "Kind", "Best (us)", "Worst (us)", "Note"]]
+    for chain in result.chains:
+        for hop in chain.hops:
+            rows.append([chain.name, hop.path, hop.kind, hop.best_us, hop.worst_us, hop.note])
+        rows.append(
+            [chain.name, "Total", "", chain.best_us, chain.worst_us, f"expected {fmt(chain.expected_us)}"]
+        )
+    return {f"{base}__Latency.csv": csv_text(rows)}
+
+
+def _run(context: AnalysisContext) -> LatencyResult:
+    chains = context.options.get("latency_chains")
+    return analyze_latency(context.root, chains, schedulability=context.result("sched"))
+
+
+register(
+    Analysis(
+        name="latency",
+        json_key="latency",
+        order=60,
+        run=_run,
+        text=latency_text,
+        csv=latency_csv,
+        description="end-to-end latency of thread chains and flows, with the response times",
+    )
+)

@@ -1,7 +1,8 @@
 """One result object for every analysis of an instance, and its renderings.
 
-:func:`run_analyses` runs the selected analyses (``cpu``, ``budget``, ``bus``, ``sched``,
-``sim``, ``latency``, ``deploy``) on an instance and gathers them in an :class:`AnalysisReport`:
+:func:`run_analyses` runs the selected analyses (those of :mod:`rosaadl.analysis.registry`:
+``cpu``, ``budget``, ``bus``, ``sched``, ``sim``, ``latency``, ``deploy``, and any other
+registered) on an instance and gathers them in an :class:`AnalysisReport`:
 
 * :meth:`AnalysisReport.as_dict` / :meth:`AnalysisReport.to_json`: the JSON document of
   ``rosaadl analyze --format json``::
@@ -25,10 +26,11 @@
   a bus row also lists its ``virtual_buses`` and ``broadcasts``; a model with modes adds
   ``"mode"`` / ``"modes"`` (the system operation mode) to processor and bus rows; a deployment
   search adds ``"deployment"``.
-* :meth:`AnalysisReport.text`: plain text tables.
-* :meth:`AnalysisReport.write_csv`: CSV files in a directory, among them OSATE's bus load report
-  (``<instance>__BusLoad.csv``, line for line) and reports in the style of its resource budget
-  analyses.
+* :meth:`AnalysisReport.text`: plain text tables, one section per analysis (each analysis
+  renders its own).
+* :meth:`AnalysisReport.write_csv`: CSV files in a directory, those each analysis writes, among
+  them OSATE's bus load report (``<instance>__BusLoad.csv``, line for line) and reports in the
+  style of its resource budget analyses.
 
 ``ok`` is false when any analysis reports an error: an overload, a budget exceeded, a task set
 found not schedulable, a deadline missed in simulation, a latency over its bound, no deployment.
@@ -36,97 +38,22 @@ found not schedulable, a deadline missed in simulation, a latency over its bound
 
 from __future__ import annotations
 
-import csv
-import io
 import json
-import logging
 import re
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
-from fractions import Fraction
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from rosaadl.errors import Diagnostic, Location, RosaadlError, UsageError
+from rosaadl.analysis.registry import Analysis, AnalysisContext, analyses, analysis, parse_only
+from rosaadl.errors import Diagnostic
 
 __all__ = ["ANALYSES", "DEFAULT_ANALYSES", "AnalysisReport", "run_analyses", "parse_only"]
 
-log = logging.getLogger(__name__)
-
-#: Every analysis ``run_analyses`` knows, in report order.
+#: The analyses rosaadl ships, in report order (others may be registered).
 ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "deploy")
 #: What runs when nothing is selected (the deployment search proposes, it does not check).
 DEFAULT_ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency")
-
-_JSON_KEYS = {
-    "cpu": "cpu",
-    "budget": "budget",
-    "bus": "bus",
-    "sched": "schedulability",
-    "sim": "simulation",
-    "latency": "latency",
-    "deploy": "deployment",
-}
-
-
-def parse_only(text: str | Iterable[str] | None) -> tuple[str, ...]:
-    """``"cpu,bus"`` (or a list) → the selected analyses in report order; a located
-    :class:`UsageError` for an unknown name."""
-    if text is None:
-        return DEFAULT_ANALYSES
-    items = text.split(",") if isinstance(text, str) else list(text)
-    names = {item.strip().lower() for item in items if item.strip()}
-    aliases = {"schedulability": "sched", "simulation": "sim", "deployment": "deploy", "busload": "bus"}
-    names = {aliases.get(n, n) for n in names}
-    unknown = sorted(n for n in names if n not in ANALYSES)
-    if unknown:
-        raise UsageError(f"unknown analysis {', '.join(unknown)} (expected some of: {', '.join(ANALYSES)})")
-    if not names:
-        raise UsageError(f"no analysis selected (expected some of: {', '.join(ANALYSES)})")
-    return tuple(a for a in ANALYSES if a in names)
-
-
-def _num(value: Any) -> Any:
-    if isinstance(value, Fraction):
-        return int(value) if value.denominator == 1 else float(value)
-    return value
-
-
-def _fmt(value: Any, digits: int = 2) -> str:
-    """A number for a text table: integers as they are, others with ``digits`` decimals."""
-    if value is None:
-        return "-"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, Fraction) and value.denominator == 1:
-        return str(value.numerator)
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, (Fraction, float)):
-        return f"{float(value):.{digits}f}"
-    return str(value)
-
-
-def _table(headers: Sequence[str], rows: Iterable[Sequence[Any]]) -> list[str]:
-    cells = [[str(h) for h in headers]] + [
-        [c if isinstance(c, str) else _fmt(c) for c in row] for row in rows
-    ]
-    widths = [max(len(row[i]) for row in cells) for i in range(len(headers))]
-    out = []
-    for n, row in enumerate(cells):
-        parts = []
-        for i, cell in enumerate(row):
-            numeric = n > 0 and i > 0 and re.fullmatch(r"-?[\d.]+|-", cell) is not None
-            parts.append(cell.rjust(widths[i]) if numeric else cell.ljust(widths[i]))
-        out.append("  ".join(parts).rstrip())
-        if n == 0:
-            out.append("  ".join("-" * w for w in widths))
-    return out
-
-
-def _short(path: str) -> str:
-    """An instance path without its root segment (shorter table cells)."""
-    return path.partition(".")[2] or path
 
 
 def _safe_name(name: str) -> str:
@@ -140,32 +67,46 @@ def _diag_key(d: Diagnostic) -> tuple[str, str, str | None]:
 
 @dataclass(frozen=True)
 class AnalysisReport:
-    """The results of the analyses that ran on one instance (None: not run), and the errors of
-    analyses that could not run."""
+    """The results of the analyses that ran on one instance, in report order, and the errors of
+    analyses that could not run. ``taskset``: the task set the scheduling analyses extracted
+    (None when none ran), for renderings that draw the schedule."""
 
     instance: str
-    cpu: Any = None
-    budget: Any = None
-    bus: Any = None
-    schedulability: Any = None
-    simulation: Any = None
-    latency: Any = None
-    deployment: Any = None
+    outcomes: tuple[tuple[Analysis, Any], ...] = ()
     failures: tuple[Diagnostic, ...] = ()
     verdicts: tuple[Diagnostic, ...] = ()
+    taskset: Any = None
 
     def results(self) -> list[tuple[str, Any]]:
-        """(key, result) of the analyses that ran, in report order."""
-        pairs = [
-            ("cpu", self.cpu),
-            ("budget", self.budget),
-            ("bus", self.bus),
-            ("sched", self.schedulability),
-            ("sim", self.simulation),
-            ("latency", self.latency),
-            ("deploy", self.deployment),
-        ]
-        return [(k, r) for k, r in pairs if r is not None]
+        """(name, result) of the analyses that ran, in report order."""
+        return [(item.name, result) for item, result in self.outcomes]
+
+    def result(self, name: str) -> Any:
+        """The result of the analysis ``name`` (or an alias), None when it did not run."""
+        wanted = name.strip().lower()
+        for item, result in self.outcomes:
+            if wanted == item.name or wanted in item.aliases:
+                return result
+        analysis(name)  # an analysis no one registered is a usage error, not "did not run"
+        return None
+
+    def with_result(self, name: str, result: Any) -> AnalysisReport:
+        """This report with ``result`` as the result of the analysis ``name`` (added in report
+        order, or in place of the one it had), e.g. a deployment search run on its own."""
+        item = analysis(name)
+        kept = [(i, r) for i, r in self.outcomes if i.name != item.name]
+        order = {a.name: n for n, a in enumerate(analyses())}
+        outcomes = sorted([*kept, (item, result)], key=lambda pair: order.get(pair[0].name, len(order)))
+        return replace(self, outcomes=tuple(outcomes))
+
+    # the analyses rosaadl ships, by the names their results have always had here
+    cpu = property(lambda self: self.result("cpu"))
+    budget = property(lambda self: self.result("budget"))
+    bus = property(lambda self: self.result("bus"))
+    schedulability = property(lambda self: self.result("sched"))
+    simulation = property(lambda self: self.result("sim"))
+    latency = property(lambda self: self.result("latency"))
+    deployment = property(lambda self: self.result("deploy"))
 
     @property
     def diagnostics(self) -> tuple[Diagnostic, ...]:
@@ -210,7 +151,7 @@ class AnalysisReport:
 
         return {
             "ok": self.ok,
-            "analyses": {_JSON_KEYS[k]: r.as_dict() for k, r in self.results()},
+            "analyses": {item.json_key: result.as_dict() for item, result in self.outcomes},
             "errors": [entry(d) for d in self.errors],
             "warnings": [entry(d) for d in self.warnings],
         }
@@ -223,115 +164,8 @@ class AnalysisReport:
     def text(self) -> str:
         """Every result as plain text tables, then the errors and warnings."""
         lines: list[str] = [f"Analyses of {self.instance}", ""]
-        if self.cpu is not None:
-            lines += ["CPU (bound resources)", ""]
-            rows = []
-            for p in self.cpu.processors:
-                name = _short(p.path) + (f" {p.mode}" if p.mode else "")
-                rows.append([name, p.capacity_mips, p.demand_mips, p.load_percent, p.utilization * 100])
-                for t in p.threads:
-                    rows.append(["  " + _short(t.path), "", t.mips, t.load_percent, ""])
-            lines += _table(["processor / thread", "capacity MIPS", "demand MIPS", "load %", "CET/T %"], rows)
-            if self.cpu.memories:
-                lines.append("")
-                rows = [
-                    [_short(m.path) + f" ({m.kind})", m.capacity_kbyte, m.demand_kbyte, m.load_percent]
-                    for m in self.cpu.memories
-                ]
-                lines += _table(["memory", "capacity KByte", "demand KByte", "load %"], rows)
-            lines.append("")
-        if self.budget is not None:
-            lines += ["Budgets (not bound)", ""]
-            for total in self.budget.totals:
-                unit = "MIPS" if total.kind == "MIPS" else "KByte"
-                title = (
-                    f"{total.kind} capacity {_fmt(total.capacity)} {unit}, budget {_fmt(total.budget)} {unit}"
-                )
-                lines.append(title + (f" {total.mode}" if total.mode else ""))
-                rows = [
-                    ["  " * r.depth + _short(r.path), r.category, r.budget, r.actual, r.note]
-                    for r in total.rows
-                ]
-                lines += _table(["component", "category", f"budget {unit}", f"actual {unit}", "note"], rows)
-                lines.append("")
-        if self.bus is not None:
-            lines += ["Bus load (KB/s)", ""]
-            for som in self.bus.modes:
-                if som.label:
-                    lines.append(f"in modes {som.label}")
-                rows = []
-                for bus in som.buses:
-                    self._bus_rows(rows, bus, 0)
-                lines += _table(
-                    ["bus / virtual bus / connection", "capacity", "budget", "required", "actual"], rows
-                )
-                lines.append("")
-            if self.bus.ports:
-                rows = [
-                    [_short(p.path), p.data_size_bytes, p.rate_per_second, p.kbytesps] for p in self.bus.ports
-                ]
-                lines += _table(["outgoing port", "Data_Size bytes", "rate /s", "KB/s"], rows)
-                lines.append("")
-        if self.schedulability is not None:
-            lines += ["Schedulability", ""]
-            for dom in self.schedulability.domains:
-                where = _short(dom.path) + (f".{dom.core}" if dom.core else "")
-                interval = dom.feasibility_interval.length if dom.feasibility_interval else None
-                lines.append(
-                    f"{where}: {dom.scheduler.value}, utilization {_fmt(dom.utilization, 4)}, "
-                    f"bound {_fmt(dom.bound, 4)}, feasibility interval {_fmt(interval)} "
-                    f"{self.schedulability.time_unit}, schedulable {_fmt(dom.schedulable)}"
-                )
-                rows = [
-                    [_short(t.path), t.priority, t.period, t.capacity, t.deadline, t.wcrt, t.met]
-                    for t in dom.tasks
-                ]
-                lines += _table(["task", "priority", "period", "capacity", "deadline", "WCRT", "met"], rows)
-                lines.append("")
-        if self.simulation is not None:
-            lines += [f"Simulation ({self.simulation.deadline_misses} deadline misses)", ""]
-            rows = [
-                [
-                    _short(t.path),
-                    t.released,
-                    t.completed,
-                    t.worst_response,
-                    t.average_response,
-                    t.deadline_misses,
-                    t.preemptions,
-                ]
-                for t in self.simulation.tasks
-            ]
-            lines += _table(
-                ["task", "released", "completed", "worst RT", "average RT", "misses", "preemptions"], rows
-            )
-            lines.append("")
-        if self.latency is not None:
-            lines += ["End-to-end latency (us)", ""]
-            rows = [[c.name, c.best_us, c.worst_us, c.expected_us, c.met] for c in self.latency.chains]
-            lines += _table(["chain", "best", "worst", "expected", "met"], rows)
-            lines.append("")
-        if self.deployment is not None:
-            dep = self.deployment
-            lines += [
-                f"Deployment search ({dep.method}{', optimal' if dep.optimal else ''}, "
-                f"max load {_fmt(dep.max_load * 100)} %, {'feasible' if dep.feasible else 'not feasible'})",
-                "",
-            ]
-            rows = [
-                [
-                    _short(c.path),
-                    c.capacity_mips,
-                    c.load_percent,
-                    c.schedulable,
-                    ", ".join(_short(p) for p in c.processes),
-                ]
-                for c in dep.cores
-            ]
-            lines += _table(["processor", "capacity MIPS", "load %", "schedulable", "processes"], rows)
-            lines.append("")
-            lines += dep.associations()
-            lines.append("")
+        for item, result in self.outcomes:
+            lines += item.text(result)
         for title, group in (("Errors", self.errors), ("Warnings", self.warnings)):
             if group:
                 lines.append(f"{title} ({len(group)})")
@@ -340,116 +174,14 @@ class AnalysisReport:
         lines.append("OK" if self.ok else "FAILED")
         return "\n".join(lines) + "\n"
 
-    @staticmethod
-    def _bus_rows(rows: list[list[Any]], bus: Any, depth: int) -> None:
-        indent = "  " * depth
-        rows.append(
-            [
-                indent + _short(bus.path),
-                bus.capacity_kbps,
-                bus.budget_kbps,
-                bus.required_kbps,
-                bus.actual_kbps,
-            ]
-        )
-        for vb in bus.virtual_buses:
-            AnalysisReport._bus_rows(rows, vb, depth + 1)
-        for conn in bus.connections:
-            rows.append([indent + "  " + conn.name, "", conn.budget_kbps, "", conn.actual_kbps])
-        for group in bus.broadcasts:
-            rows.append([indent + "  " + group.label, "", group.budget_kbps, "", group.actual_kbps])
-
     # ------------------------------------------------------------------ CSV
 
     def csv_files(self) -> dict[str, str]:
         """File name → content of every CSV report (OSATE's names: ``<instance>__<Report>.csv``)."""
         base = _safe_name(self.instance)
         files: dict[str, str] = {}
-        if self.bus is not None:
-            files[f"{base}__BusLoad.csv"] = self.bus.csv_text()
-        if self.cpu is not None:
-            files[f"{base}__BoundResourceAnalysis.csv"] = _bound_csv(self.cpu)
-        if self.budget is not None:
-            files[f"{base}__ResourceBudgets.csv"] = _budget_csv(self.budget)
-        if self.schedulability is not None:
-            rows = [
-                [
-                    "Processor",
-                    "Scheduler",
-                    "Task",
-                    "Priority",
-                    "Period",
-                    "Capacity",
-                    "Deadline",
-                    "WCRT",
-                    "Met",
-                ]
-            ]
-            for dom in self.schedulability.domains:
-                where = dom.path + (f".{dom.core}" if dom.core else "")
-                for t in dom.tasks:
-                    rows.append(
-                        [
-                            where,
-                            dom.scheduler.value,
-                            t.path,
-                            t.priority,
-                            t.period,
-                            t.capacity,
-                            t.deadline,
-                            t.wcrt,
-                            t.met,
-                        ]
-                    )
-            files[f"{base}__Schedulability.csv"] = _csv(rows)
-        if self.simulation is not None:
-            rows = [
-                [
-                    "Task",
-                    "Released",
-                    "Completed",
-                    "First response",
-                    "Worst response",
-                    "Average response",
-                    "Deadline misses",
-                    "Preemptions",
-                ]
-            ]
-            for t in self.simulation.tasks:
-                rows.append(
-                    [
-                        t.path,
-                        t.released,
-                        t.completed,
-                        t.first_response,
-                        t.worst_response,
-                        t.average_response,
-                        t.deadline_misses,
-                        t.preemptions,
-                    ]
-                )
-            files[f"{base}__Simulation.csv"] = _csv(rows)
-        if self.latency is not None:
-            rows = [["Chain", "Element", "Kind", "Best (us)", "Worst (us)", "Note"]]
-            for chain in self.latency.chains:
-                for hop in chain.hops:
-                    rows.append([chain.name, hop.path, hop.kind, hop.best_us, hop.worst_us, hop.note])
-                rows.append(
-                    [
-                        chain.name,
-                        "Total",
-                        "",
-                        chain.best_us,
-                        chain.worst_us,
-                        f"expected {_fmt(chain.expected_us)}",
-                    ]
-                )
-            files[f"{base}__Latency.csv"] = _csv(rows)
-        if self.deployment is not None:
-            rows = [["Process", "Processor", "Load (%)"]]
-            for p in self.deployment.placements:
-                rows.append([p.process, p.processor, p.load * 100])
-            files[f"{base}__Deployment.csv"] = _csv(rows)
+        for item, result in self.outcomes:
+            files.update(item.csv(result, base))
         return files
 
     def write_csv(self, directory: str | Path) -> list[Path]:
@@ -466,106 +198,6 @@ class AnalysisReport:
         return written
 
 
-def _csv_value(value: Any) -> str:
-    if value is None:
-        return ""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, Fraction):
-        return str(value.numerator) if value.denominator == 1 else repr(float(value))
-    if isinstance(value, float):
-        return repr(value)
-    return str(value)
-
-
-def _csv(rows: list[list[Any]]) -> str:
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    for row in rows:
-        writer.writerow([_csv_value(v) for v in row])
-    return buffer.getvalue()
-
-
-def _f3(value: Fraction | None) -> str:
-    return f"{float(value or 0):.3f}"
-
-
-def _bound_csv(result: Any) -> str:
-    """In the style of OSATE's bound resource analysis report."""
-    lines = [f"Bound resource analysis of {result.instance}", ""]
-    modes = sorted({p.mode for p in result.processors}) or [""]
-    for mode in modes:
-        lines += [f"Processor Summary Report: {mode}".rstrip(), ""]
-        for p in (p for p in result.processors if p.mode == mode):
-            kind = "Virtual Processor" if p.category == "virtualProcessor" else "Processor"
-            lines += [
-                _squeeze(
-                    f"Detailed Workload Report: {mode} for {kind} {_short(p.path)} "
-                    f"with Capacity {_f3(p.capacity_mips)} MIPS"
-                ),
-                "",
-                "Component,Budget,Actual,Notes",
-            ]
-            for row in p.components:
-                lines.append(
-                    f"{'  ' * row.depth}{_category(row.category)} {_short(row.path)},{_f3(row.budget)} MIPS,"
-                    f"{_f3(row.actual)} MIPS,{row.note}"
-                )
-            load = f",{float(p.load_percent):.2f} %" if p.load_percent is not None else ","
-            lines += [f"Total,,{_f3(p.demand_mips)} MIPS{load}", ""]
-    for m in result.memories:
-        lines += [
-            _squeeze(
-                f"Detailed Workload Report: {m.mode} for memory {_short(m.path)} ({m.kind}) "
-                f"with Capacity {_f3(m.capacity_kbyte)} KByte"
-            ),
-            "",
-            "Component,Budget,Actual,Notes",
-        ]
-        for row in m.components:
-            lines.append(
-                f"{_category(row.category)} {_short(row.path)},{_f3(row.budget)} KByte,"
-                f"{_f3(row.actual)} KByte,{row.note}"
-            )
-        lines += [f"Total,,{_f3(m.demand_kbyte)} KByte", ""]
-    return "\n".join(lines) + "\n"
-
-
-def _budget_csv(result: Any) -> str:
-    """In the style of OSATE's not-bound resource budget report."""
-    lines = [f"Resource budget analysis of {result.instance}", ""]
-    for total in result.totals:
-        unit = "MIPS" if total.kind == "MIPS" else "KByte"
-        lines += [
-            f"Detailed {total.kind} Budget Report {total.mode}".rstrip(),
-            "",
-            "Component,Budget,Actual,Notes",
-        ]
-        for row in total.rows:
-            lines.append(
-                f"{'  ' * row.depth}{_category(row.category)} {_short(row.path)},{_f3(row.budget)} {unit},"
-                f"{_f3(row.actual)} {unit},{row.note}"
-            )
-        lines += [
-            f"Total,,{_f3(total.budget)} {unit}",
-            "",
-            f"{total.kind} capacity {_f3(total.capacity)} {unit} : "
-            f"{total.kind} budget {_f3(total.budget)} {unit}",
-            f"{total.resources_with_capacity} out of {total.resources} with {total.kind} capacity",
-            f"{total.budgeted_components} out of {total.components} with {total.kind} budget",
-            "",
-        ]
-    return "\n".join(lines) + "\n"
-
-
-def _squeeze(text: str) -> str:
-    return re.sub(" +", " ", text)
-
-
-def _category(name: str) -> str:
-    return {"threadGroup": "thread group", "virtualProcessor": "virtual processor"}.get(name, name)
-
-
 # =============================================================================== running
 
 
@@ -577,86 +209,40 @@ def run_analyses(
     deployment: dict[str, Any] | None = None,
     simulation_horizon: Any = None,
 ) -> AnalysisReport:
-    """Run the selected analyses (default :data:`DEFAULT_ANALYSES`) on an instance.
+    """Run the selected analyses (default: every registered analysis that runs by default) on an
+    instance, in report order.
 
     An analysis that cannot run on the model (a :class:`~rosaadl.errors.RosaadlError`) becomes an
     error of the report; the others still run. ``deployment`` passes keyword arguments to
-    :func:`~rosaadl.analysis.deployment.search_deployment`.
+    :func:`~rosaadl.analysis.deployment.search_deployment`, ``latency_chains`` the chains to
+    :func:`~rosaadl.analysis.latency.analyze_latency`, ``simulation_horizon`` the horizon to
+    :func:`~rosaadl.analysis.simulation.simulate`.
     """
-    from rosaadl.analysis.busload import analyze_bus_load
-    from rosaadl.analysis.deployment import search_deployment
-    from rosaadl.analysis.latency import analyze_latency
-    from rosaadl.analysis.resources import analyze_budgets, analyze_resources, instance_root
-    from rosaadl.analysis.schedulability import analyze_schedulability
-    from rosaadl.analysis.simulation import simulate
-    from rosaadl.analysis.tasks import taskset_from_instance
+    from rosaadl.analysis.instance_values import instance_root
 
     selected = parse_only(only)
     root = instance_root(source)
-    results: dict[str, Any] = {}
-    failures: list[Diagnostic] = []
+    context = AnalysisContext(
+        root,
+        {
+            "latency_chains": latency_chains,
+            "deployment": deployment,
+            "simulation_horizon": simulation_horizon,
+        },
+    )
+    outcomes = []
     verdicts: list[Diagnostic] = []
-    taskset = None
-
-    def attempt(name: str, run: Any) -> None:
-        try:
-            results[name] = run()
-        except RosaadlError as exc:
-            log.debug("analysis %s failed: %s", name, exc)
-            failures.append(Diagnostic("error", f"{name} analysis: {exc.message}", exc.location))
-
-    if "cpu" in selected:
-        attempt("cpu", lambda: analyze_resources(root))
-    if "budget" in selected:
-        attempt("budget", lambda: analyze_budgets(root))
-    if "bus" in selected:
-        attempt("bus", lambda: analyze_bus_load(root))
-    if {"sched", "sim", "latency"} & set(selected):
-        try:
-            taskset = taskset_from_instance(root)
-        except RosaadlError as exc:
-            failures.append(Diagnostic("error", f"task extraction: {exc.message}", exc.location))
-    if taskset is not None and ("sched" in selected or "latency" in selected):
-        attempt("sched", lambda: analyze_schedulability(taskset))
-        sched = results.get("sched")
-        if sched is not None and "sched" in selected:
-            for dom in sched.domains:
-                if dom.schedulable is False:
-                    where = dom.path + (f".{dom.core}" if dom.core else "")
-                    verdicts.append(
-                        Diagnostic(
-                            "error",
-                            f"not schedulable under {dom.scheduler.value} "
-                            f"(utilization {float(dom.utilization):.4f}, bound {dom.bound:.4f})",
-                            Location(path=where),
-                        )
-                    )
-    if taskset is not None and "sim" in selected:
-        attempt("sim", lambda: simulate(taskset, horizon=simulation_horizon, record_schedule=False))
-        sim = results.get("sim")
-        if sim is not None:
-            for stats in sim.tasks:
-                if stats.deadline_misses:
-                    verdicts.append(
-                        Diagnostic(
-                            "error",
-                            f"missed {stats.deadline_misses} deadlines in simulation",
-                            Location(path=stats.path),
-                        )
-                    )
-    if "latency" in selected:
-        attempt("latency", lambda: analyze_latency(root, latency_chains, schedulability=results.get("sched")))
-    if "deploy" in selected:
-        attempt("deploy", lambda: search_deployment(root, **(deployment or {})))
+    for item in analyses():
+        if item.name not in selected:
+            continue
+        result = context.result(item.name)
+        if result is not None:
+            outcomes.append((item, result))
+            verdicts += item.verdicts(result)
     return AnalysisReport(
         root.name or "",
-        cpu=results.get("cpu"),
-        budget=results.get("budget"),
-        bus=results.get("bus"),
-        schedulability=results.get("sched") if "sched" in selected else None,
-        simulation=results.get("sim"),
-        latency=results.get("latency"),
-        deployment=results.get("deploy"),
-        failures=tuple(failures),
+        tuple(outcomes),
+        failures=tuple(context.failures),
         verdicts=tuple(verdicts),
+        taskset=context.taskset_if_extracted,
     )

@@ -1,4 +1,4 @@
-"""Throughput of the AADL text reader (``importers/aadl_text.py``), next to the parser alone.
+"""Throughput of the AADL text reader (the package ``importers/aadl_text/``), next to the parser alone.
 
 Side by side, in MB/s of AADL text (wall clock, and CPU time of this process, which is what
 counts on a shared machine), on every ``.aadl``/``.aadl2`` file of the real-world corpus

@@ -26,11 +26,12 @@ from collections.abc import Callable
 from typing import Any
 
 from rosaadl import model
+from rosaadl.analysis.budgets import analyze_budgets
 from rosaadl.analysis.busload import analyze_bus_load
 from rosaadl.analysis.deployment import search_deployment
 from rosaadl.analysis.latency import analyze_latency
 from rosaadl.analysis.report import run_analyses
-from rosaadl.analysis.resources import analyze_budgets, analyze_resources
+from rosaadl.analysis.resources import analyze_resources
 
 __all__ = ["main", "fleet"]
 

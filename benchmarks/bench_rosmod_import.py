@@ -23,6 +23,7 @@ from pathlib import Path
 
 from rosaadl import model
 from rosaadl.importers import rosmod_text, rosmod_webgme
+from rosaadl.importers.rosmod_text.blocks import parse_blocks
 
 CORPUS_PROJECTS = (
     "textual-v0.3/periodic-timers",
@@ -114,7 +115,7 @@ def _parse_only(project: Path) -> int:
         if path.suffix in (".rml", ".rhw", ".rdp"):
             text = path.read_text()
             if not text.lstrip().startswith("{"):  # the v0.4 JSON file has no blocks to parse
-                count += len(rosmod_text._parse_blocks(text, str(path)))
+                count += len(parse_blocks(text, str(path)))
     return count
 
 

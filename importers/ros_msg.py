@@ -35,7 +35,7 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import model
-from rosaadl.errors import Location, ParseError
+from rosaadl.errors import CollectedErrors, Location, ParseError
 
 __all__ = [
     "PRIMITIVE_SIZES",
@@ -145,19 +145,10 @@ _TYPE_RE = re.compile(
 _FIELD_NAME_RE = re.compile(_NAME)
 
 
-class RosMessageError(ParseError):
+class RosMessageError(CollectedErrors, ParseError):
     """One or more located problems in a message or service definition (``errors`` lists all)."""
 
     stage = "parse"
-
-    def __init__(self, errors: Sequence[ParseError]) -> None:
-        first = errors[0]
-        more = len(errors) - 1
-        message = first.message if not more else f"{first.message} (and {more} more)"
-        super().__init__(message, first.location, errors=list(errors))
-
-    def __str__(self) -> str:
-        return "\n".join(str(e) for e in self.errors)
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,7 @@ anything else is an internal error (exit code 3).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 __all__ = [
@@ -25,6 +26,7 @@ __all__ = [
     "ExportError",
     "GenerationError",
     "UsageError",
+    "CollectedErrors",
 ]
 
 
@@ -192,3 +194,23 @@ class UsageError(RosaadlError):
     """The command line or API was called wrongly (exit code 2 on the CLI)."""
 
     stage = "usage"
+
+
+class CollectedErrors:
+    """Mixin of an error that stands for several located errors found together.
+
+    Its message and location are those of the first one (with how many more), ``errors`` lists
+    every one and ``str()`` gives one line each. Put it before a :class:`RosaadlError` subclass:
+    ``class RosMessageError(CollectedErrors, ParseError)``, as the ROS message and ROSMOD readers do.
+    """
+
+    errors: list
+
+    def __init__(self, errors: Sequence[RosaadlError]) -> None:
+        first = errors[0]
+        more = len(errors) - 1
+        message = first.message if not more else f"{first.message} (and {more} more)"
+        super().__init__(message, first.location, errors=list(errors))  # type: ignore[call-arg]
+
+    def __str__(self) -> str:
+        return "\n".join(str(e) for e in self.errors)

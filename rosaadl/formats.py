@@ -1,9 +1,14 @@
-"""Which reader handles which input: the one table ``check``, ``import`` and friends consult.
+"""The formats rosaadl reads and writes: the tables ``check``, ``import`` and ``export`` consult.
 
-Each format says how to recognise an input (file suffix, or a folder test), how to read it into
-one of our models, and what that model is. Reading returns a :class:`Loaded`; problems are
-raised as located :class:`~rosaadl.errors.RosaadlError`\\ s (a reader that collects several
+Readers: each format says how to recognise an input (file suffix, or a folder test), how to read
+it into one of our models, and what that model is. Reading returns a :class:`Loaded`; problems
+are raised as located :class:`~rosaadl.errors.RosaadlError`\\ s (a reader that collects several
 raises one error whose ``errors`` attribute lists them all).
+
+Writers: each format says what it writes (declarative AADL packages, or a system instance), what
+``-o`` names (a file or a folder), the options it takes, and how to write. ``rosaadl export``
+has one sub-command per writer. A new format is one module in ``importers/`` or ``exporters/``
+plus one entry in :func:`readers` or :func:`writers`; the modules are imported only when used.
 """
 
 from __future__ import annotations
@@ -17,7 +22,19 @@ from pyecore.ecore import EObject
 
 from rosaadl.errors import Diagnostic, RosaadlError, UsageError
 
-__all__ = ["Loaded", "Reader", "readers", "reader_for", "read_input", "check_file", "expand_errors"]
+__all__ = [
+    "Loaded",
+    "Reader",
+    "readers",
+    "reader_for",
+    "read_input",
+    "check_file",
+    "expand_errors",
+    "WriterOption",
+    "Writer",
+    "writers",
+    "writer",
+]
 
 
 @dataclass
@@ -181,3 +198,111 @@ def check_file(path: Path, **options: Any) -> tuple[list[RosaadlError | Diagnost
     except RosaadlError as exc:
         return expand_errors(exc), []
     return [], loaded.warnings
+
+
+# =============================================================================== writers
+
+
+@dataclass(frozen=True)
+class WriterOption:
+    """An option of a writer (``--cheddar-format 2``): its keyword, the choices and the default."""
+
+    name: str  #: the keyword argument of the writer (``cheddar_format``)
+    choices: tuple[str, ...]
+    default: str
+    help: str = ""
+    reading: bool = False  #: also given to the reader of the inputs (Cheddar's time unit)
+
+    @property
+    def flag(self) -> str:
+        return "--" + self.name.replace("_", "-")
+
+
+@dataclass(frozen=True)
+class Writer:
+    """A format rosaadl writes.
+
+    ``write(source, out, warnings, **options)`` writes ``source`` (a list of AADL units when
+    ``takes`` is ``"units"``, a ``SystemInstance`` when it is ``"instance"``) to ``out`` and
+    returns what it wrote, the main file first; it appends its warnings to ``warnings``.
+    """
+
+    name: str
+    description: str
+    takes: str  #: "units" | "instance"
+    output: str  #: what ``-o`` names
+    write: Callable[..., list[Path]]
+    options: tuple[WriterOption, ...] = ()
+
+
+def _write_aadl(units: list[EObject], out: Path, warnings: list[Diagnostic]) -> list[Path]:
+    from rosaadl.exporters import aadl_text
+
+    return aadl_text.write_model(units, out)
+
+
+def _write_cheddar(
+    instance: EObject,
+    out: Path,
+    warnings: list[Diagnostic],
+    *,
+    cheddar_format: str = "3",
+    time_unit: str = "us",
+) -> list[Path]:
+    from rosaadl.exporters import cheddar
+
+    written = cheddar.write_cheddar(
+        instance, out, cheddar_format=int(cheddar_format), time_unit=time_unit, diagnostics=warnings
+    )
+    return [written]
+
+
+def _write_aaxl2(instance: EObject, out: Path, warnings: list[Diagnostic]) -> list[Path]:
+    from rosaadl.exporters import aaxl2
+
+    return [aaxl2.write_aaxl2(instance, out, warnings=warnings)]
+
+
+def writers() -> tuple[Writer, ...]:
+    """Every format rosaadl writes, in the order ``rosaadl export --help`` lists them."""
+    return (
+        Writer(
+            "aadl",
+            "AADL text: one .aadl file per package and property set of the inputs (not the library's).",
+            "units",
+            "Output folder.",
+            _write_aadl,
+        ),
+        Writer(
+            "cheddar",
+            "Cheddar XML (v3 by default, v2 on request) of a deployed system.",
+            "instance",
+            "Cheddar file to write (.xmlv3 or .xml).",
+            _write_cheddar,
+            (
+                WriterOption("cheddar_format", ("2", "3"), "3"),
+                WriterOption(
+                    "time_unit",
+                    ("us", "ms"),
+                    "us",
+                    "The unit of Cheddar's integer times; a time that is not a whole number is an error.",
+                    reading=True,
+                ),
+            ),
+        ),
+        Writer(
+            "aaxl2",
+            "OSATE instance model (.aaxl2) with its AADL sidecars, as OSATE itself writes it.",
+            "instance",
+            "Output folder: instances/<Root>_Instance.aaxl2 and the .aadl files it refers to.",
+            _write_aaxl2,
+        ),
+    )
+
+
+def writer(name: str) -> Writer:
+    """The writer called ``name``; a :class:`UsageError` naming the known ones otherwise."""
+    for item in writers():
+        if item.name == name:
+            return item
+    raise UsageError(f"no writer {name!r} (known: {', '.join(w.name for w in writers())})")

@@ -156,7 +156,12 @@ def _class_names() -> frozenset[str]:
 @functools.cache
 def _containments(eclass: EClass) -> tuple[tuple[str, bool], ...]:
     """(name, many) of the containment references of a class, in feature order (metadata only)."""
-    return tuple((ref.name, bool(ref.many)) for ref in eclass.eAllReferences() if ref.containment)
+    # eAllStructuralFeatures, not eAllReferences: the latter is a set, whose order changes from run to run
+    return tuple(
+        (f.name, bool(f.many))
+        for f in eclass.eAllStructuralFeatures()
+        if getattr(f, "containment", False)
+    )
 
 
 def children(obj: EObject) -> list[EObject]:

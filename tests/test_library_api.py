@@ -17,23 +17,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rosaadl import model
-from rosaadl.component_library import (
-    COLUMNS,
-    ComponentNotFound,
-    MeasurementError,
-    add_profiles,
-    describe,
-    format_value,
-    list_packages,
-    parse_measurements,
-    read_library,
-)
 from rosaadl.errors import RosaadlError
-from rosaadl.importers.aadl_text import read_files, read_string
+from rosaadl.importers.aadl_text import read_files
 from rosaadl.lookup import PropertyLookup
 from rosaadl.properties import Range
 from rosaadl.transforms.instantiate import instantiate
 from rosaadl.units import Quantity
+from rosaadl.workflow.library_add_profile import add_profiles
+from rosaadl.workflow.library_catalog import ComponentNotFound, describe, list_packages, read_library
+from rosaadl.workflow.library_measurements import COLUMNS, MeasurementError, parse_measurements
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLE = ROOT / "examples" / "profiles" / "sample_measurements.csv"
@@ -311,40 +303,6 @@ def test_describe_unknown_and_ambiguous(library, tmp_path) -> None:
     assert caught.value.candidates == ["nd_usb_cam::imagePublisher", "other_pkg::imagePublisher"]
     assert "ambiguous" in caught.value.message
     assert describe(workspace, "other_pkg::imagePublisher")["file"] == str(other)
-
-
-def test_format_value_covers_every_value_kind() -> None:
-    text = """
-package values_pkg
-public
-  with SEI;
-  system s
-    properties
-      Period => 10 ms;
-      SEI::MIPSBudget => 1.5 MIPS;
-      Compute_Execution_Time => 1 us .. 2 us;
-      Source_Name => "a ""quoted"" name";
-      Dispatch_Protocol => Periodic;
-      Actual_Processor_Binding => (reference (a.b), reference (c));
-      Reference_Processor => classifier (P::Q);
-      Priority => -3;
-  end s;
-end values_pkg;
-"""
-    unit = read_string(text, "v.aadl").units[0]
-    shown = [format_value(pa.ownedValues[0].value) for pa in unit.classifiers[0].ownedPropertyAssociations]
-    assert shown == [
-        "10 ms",
-        "1.5 MIPS",
-        "1 us .. 2 us",
-        '"a ""quoted"" name"',
-        "Periodic",
-        "(reference (a.b), reference (c))",
-        "classifier (P::Q)",
-        "-3",
-    ]
-    boolean = model.new("BooleanValue", value=True)
-    assert format_value(boolean) == "true" and format_value(None) == ""
 
 
 # =========================================================================== parsing measurements
@@ -843,8 +801,8 @@ def test_every_library_name_is_described(library) -> None:
 
 
 def test_build_profiles_in_memory(library) -> None:
-    from rosaadl.component_library import build_profiles
     from rosaadl.exporters.aadl_text import write_unit
+    from rosaadl.workflow.library_profiles import build_profiles
 
     rows, errors, _ = parse_measurements(SAMPLE.read_bytes(), str(SAMPLE))
     assert errors == []

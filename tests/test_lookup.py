@@ -409,3 +409,17 @@ def test_unresolved_references_stay_reference_values(ws):
     value = PropertyLookup(ws).value(t1, "Actual_Processor_Binding")
     assert [item.eClass.name for item in value.ownedItems] == ["ReferenceValue"]
     assert value.ownedItems[0].path == "nowhere"
+
+
+def test_bad_arguments_are_model_errors(ws):
+    lookup = PropertyLookup(ws)
+    worker = _c(ws, "M::worker")
+    for element, prop, options in (
+        (None, "Period", {}),
+        ("M::worker", "Period", {}),
+        (worker, 5, {}),
+        (worker, worker, {}),  # a classifier is not a property definition
+        (worker, "Period", {"in_binding": 5}),
+    ):
+        with pytest.raises(ModelError):
+            lookup.value(element, prop, **options)

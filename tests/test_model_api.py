@@ -175,3 +175,37 @@ def test_model_differences_sees_every_kind_of_attribute() -> None:
     timer = model.new("rosmod.Timer", name="t", period=__import__("decimal").Decimal("0.5"))
     other = model.new("rosmod.Timer", name="t", period=__import__("decimal").Decimal("0.25"))
     assert model.model_differences(timer, other)
+
+
+def test_children_come_in_feature_order_in_every_process() -> None:
+    """The containment order is the metamodel's feature order, not the order of a set of
+    references (which changes from one Python process to the next, with the hash seeds)."""
+    import subprocess
+    import sys
+
+    script = (
+        "from rosaadl import model\n"
+        "ci = model.new('ComponentInstance', name='c', category='system')\n"
+        "ci.featureInstances.append(model.new('FeatureInstance', name='f'))\n"
+        "ci.componentInstances.append(model.new('ComponentInstance', name='s', category='thread'))\n"
+        "ci.connectionInstances.append(model.new('ConnectionInstance', name='k'))\n"
+        "ci.modeInstances.append(model.new('ModeInstance', name='m'))\n"
+        "print([c.eClass.name for c in model.children(ci)])\n"
+    )
+    runs = {
+        subprocess.run(
+            [sys.executable, "-c", script],
+            capture_output=True,
+            text=True,
+            check=True,
+            env={**__import__("os").environ, "PYTHONHASHSEED": str(seed)},
+        ).stdout
+        for seed in range(6)
+    }
+    assert len(runs) == 1, runs
+    eclass = model.eclass_of("ComponentInstance")
+    order = [f.name for f in eclass.eAllStructuralFeatures() if getattr(f, "containment", False)]
+    names = {"featureInstances": "FeatureInstance", "componentInstances": "ComponentInstance"}
+    names |= {"connectionInstances": "ConnectionInstance", "modeInstances": "ModeInstance"}
+    expected = [names[f] for f in order if f in names]
+    assert runs.pop().strip() == str(expected)

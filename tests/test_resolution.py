@@ -5,8 +5,15 @@ from __future__ import annotations
 import pytest
 
 from rosaadl import model
-from rosaadl.errors import NameResolutionError
-from rosaadl.resolution import PREDECLARED_PROPERTY_SETS, Resolver, split_name, split_path
+from rosaadl.errors import ModelError, NameResolutionError
+from rosaadl.resolution import (
+    FEATURE_WORDS,
+    PREDECLARED_PROPERTY_SETS,
+    Resolver,
+    feature_category_word,
+    split_name,
+    split_path,
+)
 
 new = model.new
 
@@ -147,6 +154,22 @@ def test_split_helpers():
     assert segments[2].matches(2) and not segments[2].matches(4)
     assert segments[0].matches([7]) and segments[0].matches(None)
     assert str(segments[2]) == "c[1 .. 3]"
+    assert split_path(None) == [] and split_path("") == []
+    with pytest.raises(ModelError):
+        split_path(5)
+    with pytest.raises(ModelError):
+        segments[1].matches(["2"])
+
+
+def test_feature_words_cover_every_feature_category():
+    enum = model.eclass_of("Feature").findEStructuralFeature("category").eType
+    # the words of "applies to" lists: the text syntax's, except "abstract feature" (text: "feature")
+    assert {lit.name: lit.literal or lit.name for lit in enum.eLiterals} == {
+        **FEATURE_WORDS,
+        "abstractFeature": "feature",
+    }
+    assert feature_category_word(enum.getEEnumLiteral("eventDataPort")) == "event data port"
+    assert feature_category_word("abstractFeature") == "abstract feature"
 
 
 def test_classifier_visibility(ws):
@@ -344,3 +367,37 @@ def test_duplicate_units_and_answers_are_cached(ws):
     assert any("declared more than once" in d.message for d in r.check())
     derived = r.classifier("App::Derived")
     assert r.features(derived) is r.features(derived)
+
+
+def test_prototype_names_are_not_unresolved_classifiers():
+    ws = new("AadlModel", name="ws")
+    pkg = new("AadlPackage", name="P", sourceFile="p.aadl")
+    base = new(
+        "ComponentType",
+        name="Base",
+        category="system",
+        prototypes=[new("Prototype", name="Payload", text="data")],
+        features=[new("Feature", name="f", category="data port", direction="in", classifier="payload")],
+    )
+    impl = new(
+        "ComponentImplementation",
+        name="Base.i",
+        type="Base",
+        category="system",
+        subcomponents=[new("Subcomponent", name="s", category="data", classifier="Payload")],
+    )
+    derived = new("ComponentType", name="Derived", category="system", extended="Base")
+    pkg.classifiers.extend([base, impl, derived])
+    ws.units.append(pkg)
+    r = Resolver(ws)
+    # a prototype of the holding classifier, of an implementation's type, of an extended type
+    assert r.is_prototype(base.features[0], "PAYLOAD")
+    assert r.is_prototype(impl.subcomponents[0], "Payload")
+    assert r.is_prototype(new("Feature", name="g"), "Payload") is False  # held by no classifier
+    derived.features.append(new("Feature", name="g", category="data port", classifier="Payload"))
+    assert r.is_prototype(derived.features[0], "Payload")
+    # qualified names and implementation names are never prototypes
+    assert not r.is_prototype(base.features[0], "P::Payload")
+    assert not r.is_prototype(base.features[0], "Payload.i")
+    assert not r.is_prototype(base.features[0], "Other")
+    assert r.check() == []

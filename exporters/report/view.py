@@ -24,12 +24,13 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+from rosaadl.analysis.rendering import short_path
 from rosaadl.errors import Diagnostic, RosaadlError
+from rosaadl.model import component_instances
 
 __all__ = [
     "MAX_GANTT_JOBS",
@@ -78,26 +79,9 @@ def number(value: Any) -> int | float | None:
     return None
 
 
-def short_path(path: str) -> str:
-    """An instance path without the root segment."""
-    head, dot, rest = (path or "").partition(".")
-    return rest if dot else path or ""
-
-
 def _category(obj: Any) -> str:
     value = getattr(obj, "category", None)
     return getattr(value, "name", str(value or ""))
-
-
-def _components(root: Any) -> list[Any]:
-    """Every component instance under ``root`` (itself included), depth first, in model order."""
-    out = []
-    stack = [root]
-    while stack:
-        ci = stack.pop()
-        out.append(ci)
-        stack.extend(reversed(list(ci.componentInstances)))
-    return out
 
 
 def _tint(colour: str, amount: float) -> str:
@@ -157,7 +141,7 @@ class _Nodes:
             node = _Node(path, ci.name or "", kind, ci.classifier or "", colour, [], len(self.nodes))
             self.nodes.append(node)
             self.by_key[path] = node
-            for sub in _components(ci):
+            for sub in component_instances(ci):
                 self.owner.setdefault(id(sub), node)
                 if _category(sub) == "thread":
                     node.threads.append(instance_path(sub))
@@ -306,22 +290,12 @@ def _bus_rows(report: Any) -> list[dict[str, Any]]:
 # =============================================================================== schedule
 
 
-def _job_count(tasks: Iterable[Any], horizon: Fraction) -> int:
-    count = 0
-    for task in tasks:
-        if task.offset >= horizon:
-            continue
-        if task.period is None:
-            count += 1
-        else:
-            count += math.ceil((horizon - Fraction(task.offset)) / Fraction(task.period))
-    return count
-
-
-def _choose_horizon(taskset: Any) -> tuple[Any, str]:
+def _choose_horizon(taskset: Any, schedulability: Any = None) -> tuple[Any, str]:
     """The simulated window: one hyperperiod of the whole task set when it is short enough to
-    draw, else the longest hyperperiod of one core, else as many jobs as fit."""
+    draw, else the longest feasibility interval of one core (as the schedulability analysis
+    found it, when it ran), else as many jobs as fit."""
     from rosaadl.analysis.schedulability import feasibility_interval, hyperperiod
+    from rosaadl.analysis.simulation import job_count
     from rosaadl.analysis.tasks import exact_time
 
     unit = taskset.time_unit
@@ -331,27 +305,30 @@ def _choose_horizon(taskset: Any) -> tuple[Any, str]:
         end = max(Fraction(t.offset) + Fraction(t.deadline or t.capacity) for t in tasks)
         return exact_time(end), "until every job has reached its deadline"
     whole = hyperperiod(periods)
-    if _job_count(tasks, Fraction(whole)) <= MAX_GANTT_JOBS:
+    if job_count(tasks, Fraction(whole)) <= MAX_GANTT_JOBS:
         return whole, "one hyperperiod of the task set"
     per_core = []
-    for processor, _core, domain_tasks in taskset.domains():
-        if not domain_tasks:
-            continue
-        interval = feasibility_interval(domain_tasks, processor.scheduler)
-        if interval is not None:
-            per_core.append(interval.length)
+    if schedulability is not None:
+        per_core = [d.feasibility_interval.length for d in schedulability.domains if d.feasibility_interval]
+    else:
+        for processor, _core, domain_tasks in taskset.domains():
+            if not domain_tasks:
+                continue
+            interval = feasibility_interval(domain_tasks, processor.scheduler)
+            if interval is not None:
+                per_core.append(interval.length)
     longest = max(per_core, default=None)
-    if longest is not None and _job_count(tasks, Fraction(longest)) <= MAX_GANTT_JOBS:
+    if longest is not None and job_count(tasks, Fraction(longest)) <= MAX_GANTT_JOBS:
         return longest, (
             "the longest hyperperiod of one core; "
             f"the whole task set's hyperperiod, {_time_text(whole, unit)}, "
-            f"would release {_count(_job_count(tasks, Fraction(whole)))} jobs"
+            f"would release {_count(job_count(tasks, Fraction(whole)))} jobs"
         )
     rate = sum((Fraction(1) / Fraction(p) for p in periods), Fraction(0))
     length = exact_time(Fraction(max(1, math.floor(MAX_GANTT_JOBS / rate))))
     return length, (
         f"the first {_time_text(length, unit)} only; one hyperperiod, {_time_text(whole, unit)}, "
-        f"would release {_count(_job_count(tasks, Fraction(whole)))} jobs"
+        f"would release {_count(job_count(tasks, Fraction(whole)))} jobs"
     )
 
 
@@ -381,14 +358,22 @@ def _time_text(value: Any, unit: str) -> str:
     return f"{float(seconds * 10**9):.4g} ns"
 
 
-def schedule_view(root: Any, nodes: _Nodes | None = None, simulation: Any = None) -> dict[str, Any]:
+def schedule_view(
+    root: Any,
+    nodes: _Nodes | None = None,
+    simulation: Any = None,
+    *,
+    taskset: Any = None,
+    schedulability: Any = None,
+) -> dict[str, Any]:
     """The Gantt chart's data: rows (one per core with tasks), intervals, releases and missed
     deadlines, over the window of ``simulation`` when it recorded its schedule, else over one
-    hyperperiod simulated here (see :func:`_choose_horizon`)."""
+    hyperperiod simulated here (see :func:`_choose_horizon`). ``taskset`` and ``schedulability``:
+    what the analyses already extracted and found (else extracted and computed here)."""
     from rosaadl.analysis.simulation import simulate
     from rosaadl.analysis.tasks import taskset_from_instance
 
-    nodes = nodes or _Nodes(_components(root))
+    nodes = nodes or _Nodes(component_instances(root))
     empty: dict[str, Any] = {
         "available": False,
         "reason": "",
@@ -402,17 +387,18 @@ def schedule_view(root: Any, nodes: _Nodes | None = None, simulation: Any = None
         "releases": [],
         "deadline_misses": 0,
     }
-    try:
-        taskset = taskset_from_instance(root)
-    except RosaadlError as exc:
-        return {**empty, "reason": f"no task set: {exc.message}"}
+    if taskset is None:
+        try:
+            taskset = taskset_from_instance(root)
+        except RosaadlError as exc:
+            return {**empty, "reason": f"no task set: {exc.message}"}
     if not taskset.tasks:
         return {**empty, "reason": "no thread has both a period (or dispatch) and an execution time"}
     if simulation is not None and simulation.schedule:
         note = "as simulated by the analyses"
         result = simulation
     else:
-        horizon, note = _choose_horizon(taskset)
+        horizon, note = _choose_horizon(taskset, schedulability)
         try:
             result = simulate(taskset, horizon=horizon, max_jobs=MAX_GANTT_JOBS * 2)
         except RosaadlError as exc:
@@ -583,7 +569,7 @@ def _hardware(root: Any, components: list[Any]) -> tuple[list[dict[str, Any]], d
 
 
 def _architecture(root: Any, components: list[Any], nodes: _Nodes, report: Any) -> dict[str, Any]:
-    from rosaadl.analysis.resources import PropertyReader, bound_processor
+    from rosaadl.analysis.instance_values import PropertyReader, bound_processor
     from rosaadl.model import instance_path
 
     reader = PropertyReader([])
@@ -633,7 +619,7 @@ def _architecture(root: Any, components: list[Any], nodes: _Nodes, report: Any) 
             continue
         targets: list[str] = []
         candidates = [by_path[node.key]]
-        candidates += [ci for ci in _components(by_path[node.key]) if _category(ci) == "thread"]
+        candidates += [ci for ci in component_instances(by_path[node.key]) if _category(ci) == "thread"]
         for ci in candidates:
             try:
                 processor = bound_processor(ci, None, reader)
@@ -768,14 +754,16 @@ def build_view(
     instance: Any, report: Any, *, simulation: Any = None, title: str | None = None
 ) -> dict[str, Any]:
     """Everything the report shows, as JSON-ready data (see the module documentation)."""
-    from rosaadl.analysis.resources import instance_root
+    from rosaadl.analysis.instance_values import instance_root
 
     root = instance_root(instance)
-    components = _components(root)
+    components = component_instances(root)
     nodes = _Nodes(components)
     cpu = _cpu_rows(report, nodes)
     bus = _bus_rows(report)
-    schedule = schedule_view(root, nodes, simulation)
+    schedule = schedule_view(
+        root, nodes, simulation, taskset=report.taskset, schedulability=report.schedulability
+    )
     architecture = _architecture(root, components, nodes, report)
     findings = _findings(report, cpu, bus, schedule)
     name = root.name or report.instance or "instance"

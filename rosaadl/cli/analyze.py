@@ -9,30 +9,43 @@ from pathlib import Path
 
 import click
 
-from rosaadl.cli.common import EXIT_ERRORS, EXIT_OK, Options, pass_options
+from rosaadl.cli.common import (
+    EXIT_ERRORS,
+    EXIT_OK,
+    Options,
+    inputs_argument,
+    lenient_option,
+    output_option,
+    pass_options,
+    root_option,
+    time_unit_option,
+)
 from rosaadl.cli.inputs import choose_instance, read_aadl_inputs
 
 __all__ = ["command"]
 
 
+class _AnalysesOption(click.Option):
+    """``--only``, whose help lists the analyses registered when the help is shown."""
+
+    def get_help_record(self, ctx: click.Context) -> tuple[str, str] | None:
+        from rosaadl.analysis.registry import analyses
+
+        known = analyses()
+        others = [a.name for a in known if not a.default]
+        self.help = f"Comma-separated analyses: {','.join(a.name for a in known)} (default: all" + (
+            f" but {','.join(others)})." if others else ")."
+        )
+        return super().get_help_record(ctx)
+
+
 @click.command("analyze")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--root", help="The system implementation to instantiate, or the instance to take.")
-@click.option(
-    "--only",
-    help="Comma-separated analyses: cpu,budget,bus,sched,sim,latency,deploy (default: all but deploy).",
-)
-@click.option(
-    "-o", "--output", "out", type=click.Path(path_type=Path), help="Folder for the OSATE-style CSV reports."
-)
-@click.option(
-    "--time-unit",
-    type=click.Choice(["us", "ms"]),
-    default="us",
-    show_default=True,
-    help="What Cheddar's plain integer times are (Cheddar inputs).",
-)
-@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
+@inputs_argument
+@root_option()
+@click.option("--only", cls=_AnalysesOption)
+@output_option("Folder for the OSATE-style CSV reports.", required=False)
+@time_unit_option()
+@lenient_option()
 @click.option(
     "--html",
     "html_dir",

@@ -7,14 +7,14 @@ from pathlib import Path
 
 import click
 
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import Options, Report, inputs_argument, pass_options
 from rosaadl.formats import check_file
 
 __all__ = ["command"]
 
 
 @click.command("check")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
+@inputs_argument
 @click.option("--strict", is_flag=True, help="Treat what readers tolerate (unknown elements...) as errors.")
 @pass_options
 def command(options: Options, inputs: tuple[Path, ...], strict: bool) -> None:

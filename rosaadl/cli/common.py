@@ -1,4 +1,5 @@
-"""What every verb shares: the run options, the report it prints, and the exit-code policy.
+"""What every verb shares: the run options, the options several verbs take, the report it prints,
+and the exit-code policy.
 
 Exit codes: 0 ok, 1 model/validation/analysis errors, 2 usage, 3 internal error.
 With ``--format json`` stdout carries exactly one JSON document::
@@ -11,8 +12,10 @@ Progress and logs go to stderr; data goes to stdout or files.
 from __future__ import annotations
 
 import json
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from pathlib import Path
+from typing import Any, TypeVar
 
 import click
 
@@ -26,6 +29,11 @@ __all__ = [
     "EXIT_USAGE",
     "EXIT_INTERNAL",
     "pass_options",
+    "inputs_argument",
+    "output_option",
+    "root_option",
+    "lenient_option",
+    "time_unit_option",
 ]
 
 EXIT_OK = 0
@@ -48,6 +56,45 @@ class Options:
 
 
 pass_options = click.make_pass_decorator(Options, ensure=True)
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def inputs_argument(function: F) -> F:
+    """``INPUTS...``: one or more files or folders."""
+    return click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))(function)
+
+
+def output_option(help: str, *, required: bool = True) -> Callable[[F], F]:
+    """``-o/--output OUT`` (the parameter ``out``); ``help`` says whether it is a file or a folder."""
+    return click.option(
+        "-o", "--output", "out", type=click.Path(path_type=Path), required=required, help=help
+    )
+
+
+def root_option(
+    help: str = "The system implementation to instantiate, or the instance to take.",
+    *,
+    required: bool = False,
+) -> Callable[[F], F]:
+    """``--root Pkg::Sys.impl``."""
+    return click.option("--root", required=required, help=help)
+
+
+def lenient_option(
+    help: str = "Instantiate subcomponents whose classifier does not resolve.",
+) -> Callable[[F], F]:
+    """``--lenient``: keep going where a classifier does not resolve (a warning), as OSATE does."""
+    return click.option("--lenient", is_flag=True, help=help)
+
+
+def time_unit_option(
+    help: str = "What Cheddar's plain integer times are (Cheddar inputs).",
+) -> Callable[[F], F]:
+    """``--time-unit us|ms``: the unit of Cheddar's integer times."""
+    return click.option(
+        "--time-unit", type=click.Choice(["us", "ms"]), default="us", show_default=True, help=help
+    )
 
 
 def _diag_dict(item: RosaadlError | Diagnostic) -> dict[str, Any]:
@@ -74,6 +121,16 @@ class Report:
 
     def warn(self, item: RosaadlError | Diagnostic) -> None:
         self.warnings.append(item)
+
+    def note(self, items: Iterable[RosaadlError | Diagnostic], *, info: bool = False) -> None:
+        """Findings of a reader, transformation or writer: errors as errors, warnings as warnings,
+        information left out (kept as warnings when ``info``)."""
+        for item in items:
+            severity = "error" if isinstance(item, RosaadlError) else item.severity
+            if severity == "error":
+                self.error(item)
+            elif severity == "warning" or info:
+                self.warn(item)
 
     def say(self, line: str) -> None:
         self.lines.append(line)

@@ -3,7 +3,7 @@
 1. read the ROSMOD project (``examples/tracking``);
 2. convert it to AADL (``OUT/aadl/*.aadl``), read back and instantiated;
 3. bind each deployment to a robot of the component library as the project's ``bindings.json``
-   says (``OUT/aadl/<deployment>_bound.aadl``, :mod:`rosaadl.transforms.bind`);
+   says (``OUT/aadl/<deployment>_bound.aadl``, :mod:`rosaadl.workflow.binding`);
 4. instantiate the bound deployments (read back from the written files, with the library);
 5. run every analysis on each (``OUT/<deployment>/analysis/*.csv`` and ``analyses.json``);
 6. for a deployment whose binding fails (a core over 100 %, not schedulable, deadlines missed),
@@ -31,7 +31,7 @@ import importlib
 import sys
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -294,8 +294,9 @@ def _convert(run: DemoRun, state: dict[str, Any]) -> str:
     from rosaadl.importers.aadl_text import read_files
     from rosaadl.transforms.instantiate import instantiate
     from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+    from rosaadl.workflow.workspace import library_unit_names
 
-    result = rosmod_to_aadl(state["project"])
+    result = rosmod_to_aadl(state["project"], reserved_units=library_unit_names())
     run.warnings.extend(w.as_diagnostic() for w in result.warnings)
     written = write_model(result.model, run.out / "aadl")
     run.artefacts.extend(written)
@@ -310,10 +311,10 @@ def _convert(run: DemoRun, state: dict[str, Any]) -> str:
 
 
 def _bind(run: DemoRun, state: dict[str, Any], bindings: Path | None) -> str:
-    from rosaadl.exporters.aadl_text import write_model
     from rosaadl.importers.aadl_text import read_files
-    from rosaadl.transforms.bind import bind_deployment, read_bindings
+    from rosaadl.transforms.bind import bind_deployment
     from rosaadl.transforms.rosmod_to_aadl import aadl_identifier
+    from rosaadl.workflow.binding import read_bindings, write_bound
 
     spec_file = read_bindings(bindings if bindings is not None else run.project / BINDINGS_FILE)
     library = read_files([], include_library=True)
@@ -327,7 +328,7 @@ def _bind(run: DemoRun, state: dict[str, Any], bindings: Path | None) -> str:
         taken.add(package.lower())
         bound = bind_deployment(state["project"], spec, library, package_name=package)
         run.warnings.extend(bound.warnings)
-        (path,) = write_model([bound.package], run.out / "aadl")
+        path = write_bound(bound, run.out / "aadl")
         run.artefacts.append(path)
         folder = run.out / aadl_identifier(name)
         run.deployments.append(_Deployment(name, bound, path, folder))
@@ -389,11 +390,10 @@ def _analyse(run: DemoRun, state: dict[str, Any]) -> str:
 
 
 def _search(run: DemoRun, state: dict[str, Any]) -> str:
-    from rosaadl.exporters.aadl_text import write_model
     from rosaadl.importers.aadl_text import read_files
-    from rosaadl.transforms.bind import propose_binding
     from rosaadl.transforms.instantiate import instantiate
     from rosaadl.transforms.rosmod_to_aadl import aadl_identifier
+    from rosaadl.workflow.binding import propose_binding, write_bound
 
     failing = [d for d in run.deployments if not d.verdict["binding_passes"]]
     taken = state["taken"]
@@ -405,12 +405,12 @@ def _search(run: DemoRun, state: dict[str, Any]) -> str:
         taken.add(name.lower())
         proposal = propose_binding(state["project"], d.bound, d.instance, package_name=name)
         d.proposal = proposal
-        d.report = replace(d.report, deployment=proposal.search)
+        d.report = d.report.with_result("deploy", proposal.search)
         if proposal.bound is None:
             best = _percent(float(proposal.search.max_load * 100))
             parts.append(f"{d.name}: no binding passes (best max core {best})")
             continue
-        (path,) = write_model([proposal.bound.package], run.out / "aadl")
+        path = write_bound(proposal.bound, run.out / "aadl")
         run.artefacts.append(path)
         proposed = _Deployment(name, proposal.bound, path, run.out / name, proposed_from=d.name)
         model = read_files([path])

@@ -1,127 +1,98 @@
-"""``rosaadl export FORMAT INPUTS... -o OUT``: write a model in another tool's format."""
+"""``rosaadl export FORMAT INPUTS... -o OUT``: write a model in another tool's format.
+
+One sub-command per writer of :func:`rosaadl.formats.writers`, made from its entry: a writer of
+declarative AADL gets the packages of the inputs (not the library's), a writer of instances gets
+the instance ``--root`` names (instantiated when the inputs are AADL text).
+"""
 
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import click
 
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import (
+    Options,
+    Report,
+    inputs_argument,
+    lenient_option,
+    output_option,
+    pass_options,
+    root_option,
+)
 from rosaadl.cli.inputs import choose_instance, read_aadl_inputs
+from rosaadl.formats import Writer, writers
 
 __all__ = ["command"]
 
 
 @click.group("export")
 def command() -> None:
-    """Write AADL text, OSATE .aaxl2, Cheddar XML or ROSMOD projects."""
+    """Write AADL text, OSATE .aaxl2 or Cheddar XML."""
 
 
-def _report_warnings(report: Report, warnings) -> None:
-    for warning in warnings:
-        (report.error if warning.severity == "error" else report.warn)(warning)
-
-
-@command.command("aadl")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("-o", "--output", "out", type=click.Path(path_type=Path), required=True, help="Output folder.")
-@pass_options
-def export_aadl(options: Options, inputs: tuple[Path, ...], out: Path) -> None:
-    """AADL text: one .aadl file per package and property set of the inputs (not the library's)."""
-    from rosaadl.exporters import aadl_text
-
-    report = Report()
-    loaded = read_aadl_inputs(list(inputs))
-    library = {p.resolve() for p in _library_files()}
-    units = [u for u in loaded.model.units if not u.sourceFile or Path(u.sourceFile).resolve() not in library]
-    written = aadl_text.write_model(units, out)
-    _report_warnings(report, [w for w in loaded.warnings if w.severity != "info"])
-    for path in written:
-        report.say(str(path))
-    report.data["written"] = [str(p) for p in written]
-    sys.exit(report.emit(options))
-
-
-def _library_files() -> list[Path]:
+def _library_files() -> set[Path]:
     from rosaadl.importers.aadl_text import library_files
 
-    return list(library_files())
+    return {p.resolve() for p in library_files()}
 
 
-@command.command("cheddar")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--root", help="The system implementation to instantiate, or the instance to take.")
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="Cheddar file to write (.xmlv3 or .xml).",
-)
-@click.option("--cheddar-format", type=click.Choice(["2", "3"]), default="3", show_default=True)
-@click.option(
-    "--time-unit",
-    type=click.Choice(["us", "ms"]),
-    default="us",
-    show_default=True,
-    help="The unit of Cheddar's integer times; a time that is not a whole number is an error.",
-)
-@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
-@pass_options
-def export_cheddar(
-    options: Options,
-    inputs: tuple[Path, ...],
-    root: str | None,
-    out: Path,
-    cheddar_format: str,
-    time_unit: str,
-    lenient: bool,
-) -> None:
-    """Cheddar XML (v3 by default, v2 on request) of a deployed system."""
-    from rosaadl.exporters import cheddar
-
+def _export(options: Options, item: Writer, inputs: tuple[Path, ...], out: Path, **given: Any) -> None:
     report = Report()
-    loaded = read_aadl_inputs(list(inputs), time_unit=time_unit)
-    instance = choose_instance(loaded, root, lenient=lenient)
+    root = given.pop("root", None)
+    lenient = given.pop("lenient", False)
+    reading = {o.name: given[o.name] for o in item.options if o.reading}
+    loaded = read_aadl_inputs(list(inputs), **reading)
     notes: list = []
-    written = cheddar.write_cheddar(
-        instance, out, cheddar_format=int(cheddar_format), time_unit=time_unit, diagnostics=notes
-    )
-    _report_warnings(report, [w for w in loaded.warnings + notes if w.severity != "info"])
-    options.progress(f"wrote {written}")
-    report.say(f"{instance.name} -> {written}")
-    report.data.update({"instance": instance.name, "output": str(written)})
+    if item.takes == "units":
+        library = _library_files()
+        units = [
+            u for u in loaded.model.units if not u.sourceFile or Path(u.sourceFile).resolve() not in library
+        ]
+        written = item.write(units, out, notes, **given)
+        report.note([*loaded.warnings, *notes])
+        for path in written:
+            report.say(str(path))
+        report.data["written"] = [str(p) for p in written]
+    else:
+        instance = choose_instance(loaded, root, lenient=lenient)
+        main, *_ = item.write(instance, out, notes, **given)
+        report.note([*loaded.warnings, *notes])
+        options.progress(f"wrote {main}")
+        report.say(f"{instance.name} -> {main}")
+        report.data.update({"instance": instance.name, "output": str(main)})
     sys.exit(report.emit(options))
 
 
-@command.command("aaxl2")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--root", help="The system implementation to instantiate, or the instance to take.")
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="Output folder: instances/<Root>_Instance.aaxl2 and the .aadl files it refers to.",
-)
-@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
-@pass_options
-def export_aaxl2(
-    options: Options, inputs: tuple[Path, ...], root: str | None, out: Path, lenient: bool
-) -> None:
-    """OSATE instance model (.aaxl2) with its AADL sidecars, as OSATE itself writes it."""
-    from rosaadl.exporters import aaxl2
+def _subcommand(item: Writer) -> click.Command:
+    def run(options: Options, inputs: tuple[Path, ...], out: Path, **given: Any) -> None:
+        _export(options, item, inputs, out, **given)
 
-    report = Report()
-    loaded = read_aadl_inputs(list(inputs))
-    instance = choose_instance(loaded, root, lenient=lenient)
-    notes: list = []
-    written = aaxl2.write_aaxl2(instance, out, warnings=notes)
-    _report_warnings(report, [w for w in loaded.warnings + notes if w.severity != "info"])
-    options.progress(f"wrote {written}")
-    report.say(f"{instance.name} -> {written}")
-    report.data.update({"instance": instance.name, "output": str(written)})
-    sys.exit(report.emit(options))
+    decorators: list[Callable[[Any], Any]] = [inputs_argument]
+    if item.takes == "instance":
+        decorators.append(root_option())
+    decorators.append(output_option(item.output))
+    for option in item.options:
+        decorators.append(
+            click.option(
+                option.flag,
+                option.name,
+                type=click.Choice(list(option.choices)),
+                default=option.default,
+                show_default=True,
+                help=option.help or None,
+            )
+        )
+    if item.takes == "instance":
+        decorators.append(lenient_option())
+    function: Any = pass_options(run)
+    for decorator in reversed(decorators):
+        function = decorator(function)
+    return click.command(item.name, help=item.description)(function)
+
+
+for _writer in writers():
+    command.add_command(_subcommand(_writer))

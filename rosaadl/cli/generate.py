@@ -7,7 +7,15 @@ from pathlib import Path
 
 import click
 
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import (
+    Options,
+    Report,
+    inputs_argument,
+    lenient_option,
+    output_option,
+    pass_options,
+    root_option,
+)
 from rosaadl.cli.inputs import Inputs, choose_instance, read_aadl_inputs
 from rosaadl.errors import Diagnostic, UsageError
 
@@ -24,6 +32,7 @@ def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
     from rosaadl.formats import read_input
     from rosaadl.importers.aadl_text import read_files
     from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+    from rosaadl.workflow.workspace import library_unit_names
 
     loaded = read_input(path, project=project)
     if len(loaded.roots) > 1:
@@ -31,7 +40,7 @@ def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
         raise UsageError(
             f"the input holds several projects ({names}); choose one with --project", file=str(path)
         )
-    converted = rosmod_to_aadl(loaded.root)
+    converted = rosmod_to_aadl(loaded.root, reserved_units=library_unit_names())
     warnings: list[Diagnostic] = list(loaded.warnings) + list(converted.warnings)
     workspace = read_files([], warnings=warnings, check=False)
     workspace.units.extend(list(converted.model.units))
@@ -39,16 +48,9 @@ def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
 
 
 @command.command("rclpy")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--root", help="The system implementation to generate for (or the instance to take).")
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="The workspace's src folder (WS/src).",
-)
+@inputs_argument
+@root_option("The system implementation to generate for (or the instance to take).")
+@output_option("The workspace's src folder (WS/src).")
 @click.option("--force", is_flag=True, help="Overwrite files that carry no user-code marker.")
 @click.option("--dry-run", is_flag=True, help="Say what would change; write nothing.")
 @click.option(
@@ -59,7 +61,7 @@ def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
 )
 @click.option("--app-name", help="Name of the application's packages (default: the root type's name).")
 @click.option("--project", help="The project to take from a .webgmex archive.")
-@click.option("--lenient", is_flag=True, help="Instantiate subcomponents whose classifier does not resolve.")
+@lenient_option()
 @pass_options
 def generate_rclpy(
     options: Options,
@@ -97,11 +99,7 @@ def generate_rclpy(
         rosmod_trace=rosmod_trace,
         options=GenerationOptions(app_name=app_name),
     )
-    for diagnostic in list(loaded.warnings) + list(result.diagnostics):
-        if diagnostic.severity == "error":
-            report.error(diagnostic)
-        elif diagnostic.severity == "warning":
-            report.warn(diagnostic)
+    report.note([*loaded.warnings, *result.diagnostics])
     counts: dict[str, int] = {}
     for change in result.changes:
         counts[change.action] = counts.get(change.action, 0) + 1

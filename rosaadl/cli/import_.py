@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from rosaadl import model
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import Options, Report, output_option, pass_options, time_unit_option
 from rosaadl.errors import UsageError
 from rosaadl.formats import expand_errors, read_input
 
@@ -17,21 +17,8 @@ __all__ = ["command"]
 
 @click.command("import")
 @click.argument("source", type=click.Path(path_type=Path))
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="Model file to write (.xmi or .json).",
-)
-@click.option(
-    "--time-unit",
-    type=click.Choice(["us", "ms"]),
-    default="us",
-    show_default=True,
-    help="What Cheddar's plain integer times are.",
-)
+@output_option("Model file to write (.xmi or .json).")
+@time_unit_option("What Cheddar's plain integer times are.")
 @click.option("--project", help="The project to take from a .webgmex archive holding several.")
 @click.option("--strict", is_flag=True, help="Treat what readers tolerate (unknown elements...) as errors.")
 @pass_options
@@ -57,8 +44,7 @@ def command(
         raise UsageError(
             f"the input holds several projects ({names}); choose one with --project", file=str(source)
         )
-    for warning in loaded.warnings:
-        report.warn(warning)
+    report.note(loaded.warnings, info=True)
     written = model.save(loaded.root, out)
     options.progress(f"wrote {written}")
     report.say(f"{source} -> {written}")

@@ -8,7 +8,15 @@ from pathlib import Path
 import click
 
 from rosaadl import model
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import (
+    Options,
+    Report,
+    inputs_argument,
+    lenient_option,
+    output_option,
+    pass_options,
+    root_option,
+)
 from rosaadl.cli.inputs import choose_instance, read_aadl_inputs
 from rosaadl.errors import UsageError
 
@@ -16,20 +24,11 @@ __all__ = ["command"]
 
 
 @click.command("instantiate")
-@click.argument("inputs", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--root", required=True, help="The root system implementation (Pkg::Sys.impl).")
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="Model file to write (.xmi or .json): the declarative units and the instance.",
-)
-@click.option(
-    "--lenient",
-    is_flag=True,
-    help="Instantiate subcomponents whose classifier does not resolve without it (a warning), as OSATE does.",
+@inputs_argument
+@root_option("The root system implementation (Pkg::Sys.impl).", required=True)
+@output_option("Model file to write (.xmi or .json): the declarative units and the instance.")
+@lenient_option(
+    "Instantiate subcomponents whose classifier does not resolve without it (a warning), as OSATE does."
 )
 @click.option(
     "--compat",
@@ -49,15 +48,11 @@ def command(
     report = Report()
     loaded = read_aadl_inputs(list(inputs))
     instance = choose_instance(loaded, root, lenient=lenient, compatibility=compat)
-    for warning in loaded.warnings:
-        if warning.severity == "error":
-            report.error(warning)
-        elif warning.severity == "warning":
-            report.warn(warning)
+    report.note(loaded.warnings)
     counts = {
-        "components": 1 + sum(1 for o in instance.eAllContents() if o.eClass.name == "ComponentInstance"),
-        "features": sum(1 for o in instance.eAllContents() if o.eClass.name == "FeatureInstance"),
-        "connections": sum(1 for o in instance.eAllContents() if o.eClass.name == "ConnectionInstance"),
+        "components": len(model.component_instances(instance)),
+        "features": sum(1 for o in instance.eAllContents() if model.is_a(o, "FeatureInstance")),
+        "connections": sum(1 for o in instance.eAllContents() if model.is_a(o, "ConnectionInstance")),
     }
     written = model.save(loaded.model, out)
     options.progress(f"wrote {written}")

@@ -22,7 +22,7 @@ from typing import Any
 
 import click
 
-from rosaadl.cli.common import Options, Report, pass_options
+from rosaadl.cli.common import Options, Report, output_option, pass_options
 from rosaadl.errors import Diagnostic, RosaadlError, UsageError
 from rosaadl.formats import expand_errors
 
@@ -63,7 +63,7 @@ def command() -> None:
 @pass_options
 def list_command(options: Options, inputs: tuple[Path, ...], fmt: str | None) -> None:
     """List every package and property set with its components (INPUTs: more AADL files or folders)."""
-    from rosaadl.component_library import list_packages, read_library
+    from rosaadl.workflow.library_catalog import list_packages, read_library
 
     options = _options(options, fmt)
     report = Report()
@@ -102,7 +102,7 @@ def list_command(options: Options, inputs: tuple[Path, ...], fmt: str | None) ->
 @pass_options
 def show_command(options: Options, name: str, inputs: tuple[Path, ...], fmt: str | None) -> None:
     """Show what NAME is: a package, a property set, Pkg::T, Pkg::T.impl or an unqualified name."""
-    from rosaadl.component_library import ComponentNotFound, describe, read_library
+    from rosaadl.workflow.library_catalog import ComponentNotFound, describe, read_library
 
     options = _options(options, fmt)
     report = Report()
@@ -210,7 +210,7 @@ def _unit_lines(info: dict[str, Any]) -> list[str]:
     for ren in info["renames"]:
         words = [ren["name"], "renames", ren["kind"], ren["target"]]
         lines.append("  " + " ".join(w for w in words if w))
-    from rosaadl.component_library import ComponentSummary
+    from rosaadl.workflow.library_catalog import ComponentSummary
 
     for component in info["components"]:
         lines.append(f"  {ComponentSummary(**component)}")
@@ -225,14 +225,7 @@ def _unit_lines(info: dict[str, Any]) -> list[str]:
 @command.command("add-profile")
 @click.argument("measurements", type=click.Path(path_type=Path))
 @click.argument("inputs", nargs=-1, type=click.Path(path_type=Path))
-@click.option(
-    "-o",
-    "--output",
-    "out",
-    type=click.Path(path_type=Path),
-    required=True,
-    help="Folder to write the profile packages into (<node package>_profiles.aadl).",
-)
+@output_option("Folder to write the profile packages into (<node package>_profiles.aadl).")
 @_format_option
 @pass_options
 def add_profile_command(
@@ -241,7 +234,7 @@ def add_profile_command(
     """Turn a CSV of measurements into PDM implementations of library nodes (INPUTs: AADL files or
     folders with nodes that are not in the library). Columns: node, thread, board, core, period_us,
     cet_us, mips_raw, ipc, data_size_bytes [, processor]."""
-    from rosaadl.component_library import add_profiles
+    from rosaadl.workflow.library_add_profile import add_profiles
 
     options = _options(options, fmt)
     report = Report()

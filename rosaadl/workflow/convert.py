@@ -25,6 +25,7 @@ from rosaadl.errors import Diagnostic
 from rosaadl.transforms import trace as tracing
 from rosaadl.transforms.aadl_to_rosmod import aadl_to_rosmod, is_rosmod_convention, top_level_systems
 from rosaadl.transforms.rosmod_to_aadl import NameScope, aadl_identifier, rosmod_to_aadl
+from rosaadl.workflow.workspace import library_unit_names
 
 __all__ = ["convert_project_files", "convert_aadl_files", "library_units"]
 
@@ -60,7 +61,7 @@ def convert_project_files(
     outputs: list[tuple[Path, bytes]] = []
     folders = NameScope()
     for item in projects:
-        result = rosmod_to_aadl(item, trace=trace_file is not None)
+        result = rosmod_to_aadl(item, trace=trace_file is not None, reserved_units=library_unit_names())
         if warnings is not None:
             warnings.extend(Diagnostic("warning", w.message, w.location) for w in result.warnings)
         folder = Path(out_dir) / folders.take(item.name) if several else Path(out_dir)

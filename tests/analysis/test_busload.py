@@ -22,7 +22,7 @@ from instance_builders import component, num, pa, ref
 
 from rosaadl import model
 from rosaadl.analysis.busload import analyze_bus_load, java_double, message_rate, port_loads
-from rosaadl.analysis.resources import PropertyReader
+from rosaadl.analysis.instance_values import PropertyReader
 
 new = model.new
 
@@ -303,12 +303,8 @@ def _corpus_cases() -> list[tuple[str, str, str]]:
 
 
 def _reader():
-    try:
-        from rosaadl.importers import aadl_text
-    except ImportError:
-        pytest.skip("the AADL text reader (rosaadl.importers.aadl_text) has not landed yet")
-    if not hasattr(aadl_text, "read_files"):
-        pytest.skip("rosaadl.importers.aadl_text has no read_files yet")
+    from rosaadl.importers import aadl_text
+
     return aadl_text
 
 

@@ -14,17 +14,17 @@ from pathlib import Path
 
 import pytest
 
+from rosaadl.analysis.partitioning import partition, partition_taskset
 from rosaadl.analysis.schedulability import (
     analyze_schedulability,
     deadline_monotonic_priorities,
     non_preemptive_rm_failures,
-    partition,
-    partition_taskset,
     rate_monotonic_priorities,
 )
 from rosaadl.analysis.simulation import simulate
 from rosaadl.analysis.tasks import Processor, Scheduler, Task, TaskSet, taskset_from_instance
 from rosaadl.fileio import parse_xml_bytes
+from rosaadl.importers.cheddar import load_cheddar
 
 pytestmark = pytest.mark.corpus
 
@@ -230,8 +230,7 @@ def test_best_fit_partition(corpus):
 
 
 def _import(corpus: Path, name: str) -> TaskSet:
-    cheddar = pytest.importorskip("rosaadl.importers.cheddar", reason="the Cheddar importer is not available")
-    return taskset_from_instance(cheddar.load_cheddar(corpus / "cheddar" / name))
+    return taskset_from_instance(load_cheddar(corpus / "cheddar" / name))
 
 
 def test_importer_rm_case(corpus, rm_case):

@@ -9,15 +9,10 @@ import pytest
 from instance_builders import component, num, pa, ref, span
 
 from rosaadl import model
+from rosaadl.analysis.budgets import analyze_budgets
 from rosaadl.analysis.busload import port_loads
-from rosaadl.analysis.resources import (
-    PropertyReader,
-    SystemMode,
-    analyze_budgets,
-    analyze_resources,
-    bound_processor,
-    system_modes,
-)
+from rosaadl.analysis.instance_values import PropertyReader, SystemMode, bound_processor, system_modes
+from rosaadl.analysis.resources import analyze_resources
 from rosaadl.errors import ModelError
 
 new = model.new
@@ -443,16 +438,8 @@ def _table2_text() -> str:
 
 @pytest.fixture(scope="module")
 def table2_workspace(tmp_path_factory):
-    try:
-        from rosaadl.importers import aadl_text
-    except ImportError:
-        pytest.skip("the AADL text reader (rosaadl.importers.aadl_text) has not landed yet")
-    if not hasattr(aadl_text, "read_files"):
-        pytest.skip("rosaadl.importers.aadl_text has no read_files yet")
-    from importlib import resources
+    from rosaadl.importers import aadl_text
 
-    if not resources.files("rosaadl.library").joinpath("nodes", "nd_usb_cam.aadl").is_file():
-        pytest.skip("the component library's nodes have not landed yet")
     path = tmp_path_factory.mktemp("table2") / "table2_deployments.aadl"
     path.write_text(_table2_text(), encoding="utf-8")
     return aadl_text.read_files([path], include_library=True)

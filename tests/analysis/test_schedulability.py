@@ -10,14 +10,13 @@ from fractions import Fraction
 import pytest
 
 from rosaadl import model
+from rosaadl.analysis.partitioning import partition, partition_taskset
 from rosaadl.analysis.schedulability import (
     analyze_schedulability,
     blocking_times,
     feasibility_interval,
     is_harmonic,
     liu_layland_bound,
-    partition,
-    partition_taskset,
     rate_monotonic_priorities,
     response_times,
     unused_units,

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import re
 from collections import Counter
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -16,6 +17,7 @@ from lxml import etree
 from rosaadl import model
 from rosaadl.errors import Diagnostic, ExportError
 from rosaadl.exporters.cheddar import dumps_cheddar, structure_problems, write_cheddar
+from rosaadl.importers.aaxl2 import read_aaxl2
 from rosaadl.importers.cheddar import cheddar_format_of, loads_cheddar
 from rosaadl.properties import Range, own_property
 from rosaadl.units import Quantity
@@ -788,31 +790,115 @@ def test_an_edited_import_exports_the_edit() -> None:
     assert tasks["as.added"].findtext("address_space_name") == "as"
 
 
+@dataclass(frozen=True)
+class Exports:
+    """The file exports: the reader finds ``threads`` threads and ``tasks`` of them are written
+    (those with a Compute_Execution_Time; each other one is left out with a warning)."""
+
+    threads: int
+    tasks: int
+    why: str = ""
+
+
+@dataclass(frozen=True)
+class Refused:
+    """The export is refused with an ExportError matching ``match``, for the reason ``why``;
+    ``threads`` is how many threads the reader finds (each named in the refusal when it is
+    the threads that cannot be written)."""
+
+    match: str
+    why: str
+    threads: int = 0
+
+
+_UNBOUND = "the thread is bound to no processor"
+_NO_INSTANCE = "the model holds no system instance"
+
+#: Every OSATE instance file of the corpus, by file name: what its export gives. A corpus file
+#: without a row fails test_every_osate_instance_file_has_a_row.
+OSATE_EXPORTS: dict[str, Exports | Refused] = {
+    "test_event_data_port_periodic_domains_top_impl_Instance.aaxl2": Exports(2, 2),
+    "CarSystem_MyCar_CruiseControlFunction_Instance.aaxl2": Exports(0, 0, "systems and devices only"),
+    "CrossDomainExample_CrossDomain_basic_Instance.aaxl2": Exports(0, 0, "systems, devices, data, a bus"),
+    "test2.aaxl2": Refused(_NO_INSTANCE, "a declarative package: no instance to export"),
+    "testfgmodel_TestSystem_base_Instance.aaxl2": Exports(0, 0, "two processors, no software"),
+    "ps411.aaxl2": Refused(_NO_INSTANCE, "a declarative property set: no instance to export"),
+    "test_queuing_root_impl_Instance.aaxl2": Exports(2, 2, "bound through virtual processors"),
+    "LargeExample_Dependable_System_Notional_Instance.aaxl2": Exports(0, 0, "systems only"),
+    "latency-distributed_latencytest_nobus_Instance.aaxl2": Exports(2, 2),
+    "latency-distributed_latencytest_normal_Instance.aaxl2": Exports(2, 2),
+    "latency-distributed_latencytest_partitioned_distributed_Instance.aaxl2": Exports(4, 4),
+    "latency-distributed_latencytest_unbound_Instance.aaxl2": Exports(2, 2),
+    "MissionAircraft_Generic_missionAircraft_generic_Instance.aaxl2": Exports(
+        0, 0, "systems, devices, a bus"
+    ),
+    "pullprotocols_stub_i_Instance.aaxl2": Refused(_UNBOUND, "no processor in the model", threads=2),
+    "SimpleThreadLatency_s_i_Instance.aaxl2": Refused(_UNBOUND, "no processor in the model", threads=18),
+    "UAV_UAV_Impl_Instance.aaxl2": Exports(7, 0, "no thread has a Compute_Execution_Time"),
+    "IntegrationTestsModel_MySystem_Tier0_Instance.aaxl2": Exports(0, 0, "processes without threads"),
+    "platform_ZCU102_Impl_Instance.aaxl2": Exports(3, 3),
+    "down_path_three_level_test_s_i_Instance.aaxl2": Refused(
+        _UNBOUND, "no processor in the model", threads=1
+    ),
+    "BiDirPeerToPeer_LtoR_same_toplevel_i_Instance.aaxl2": Refused(
+        _UNBOUND, "no processor in the model", threads=1
+    ),
+    "P_S1_i_Instance.aaxl2": Exports(0, 0, "one system, feature groups only"),
+    "PulseOx_Forwarding_System_PulseOx_Forwarding_System_imp_Instance.aaxl2": Refused(
+        _UNBOUND, "no processor in the model", threads=3
+    ),
+    "SimpleControlSystem_SCS_tier1_Instance.aaxl2": Exports(0, 0, "processes without threads"),
+    "Geofence.aaxl2": Refused(_NO_INSTANCE, "a declarative package: no instance to export"),
+}
+
+
+def _osate_file(corpus: Path, name: str) -> Path:
+    (path,) = (corpus / "osate" / "aaxl2").rglob(name)
+    return path
+
+
 @pytest.mark.corpus
-def test_osate_instance_files_export_or_say_why(corpus: Path) -> None:
-    """Real OSATE instance models (read by the .aaxl2 importer) export, or fail with a located list."""
-    aaxl2 = pytest.importorskip("rosaadl.importers.aaxl2")
-    files = sorted((corpus / "osate" / "aaxl2").rglob("*.aaxl2"))
-    if not files:
-        pytest.skip("no .aaxl2 instance files in the corpus")
-    exported = 0
-    for path in files:
-        try:
-            result = aaxl2.read_aaxl2(path)
-        except Exception:  # the .aaxl2 reader's own tests cover its failures
-            continue
-        aadl_model = result.model if hasattr(result, "model") else result[0]
-        if len(aadl_model.instances) != 1:
-            continue
-        try:
-            data = dumps_cheddar(aadl_model)
-        except ExportError as exc:
-            assert re.search(r"_Instance\.\S+: ", exc.message), exc.message
-            continue
-        _check(data, 3)
-        loads_cheddar(data, path.stem + ".xmlv3")
-        exported += len(etree.fromstring(data).findall("tasks/*"))
-    assert exported > 0
+def test_every_osate_instance_file_has_a_row(corpus: Path) -> None:
+    files = {p.name for p in (corpus / "osate" / "aaxl2").rglob("*.aaxl2")}
+    assert files == set(OSATE_EXPORTS)
+
+
+@pytest.mark.corpus
+@pytest.mark.parametrize("name", sorted(OSATE_EXPORTS))
+def test_osate_instance_files_export_their_tasks_or_are_refused(corpus: Path, name: str) -> None:
+    """Real OSATE instance models (read by the .aaxl2 importer) export with every thread that
+    has an execution time as a task, or are refused for the reason their row names."""
+    expected = OSATE_EXPORTS[name]
+    aadl_model = read_aaxl2(_osate_file(corpus, name)).model
+    threads = [
+        t
+        for root in aadl_model.instances
+        for t in model.component_instances(root)
+        if t.category is not None and t.category.name == "thread"
+    ]
+    assert len(threads) == expected.threads
+    if isinstance(expected, Refused):
+        with pytest.raises(ExportError, match=expected.match) as refusal:
+            dumps_cheddar(aadl_model)
+        if expected.match == _UNBOUND:
+            assert refusal.value.message.count(_UNBOUND) == len(threads)
+            assert re.search(r"_Instance\.\S+: ", refusal.value.message), refusal.value.message
+        return
+    timed = [t for t in threads if own_property(t, "Timing_Properties::Compute_Execution_Time") is not None]
+    assert len(timed) == expected.tasks
+    diagnostics: list[Diagnostic] = []
+    data = dumps_cheddar(aadl_model, diagnostics=diagnostics)
+    _check(data, 3)
+    (root,) = aadl_model.instances
+    below = model.instance_path(root) + "."
+    tasks = etree.fromstring(data).findall("tasks/*")
+    assert sorted(t.findtext("name") for t in tasks) == sorted(
+        model.instance_path(t).removeprefix(below) for t in timed
+    )
+    left_out = [d for d in diagnostics if d.message.startswith("not exported as a task")]
+    assert len(left_out) == len(threads) - len(timed)
+    again = loads_cheddar(data, name.replace(".aaxl2", ".xmlv3")).instances[0]
+    assert sum(1 for t in model.component_instances(again) if t.category.name == "thread") == len(tasks)
 
 
 def test_values_the_format_cannot_carry_are_export_errors() -> None:

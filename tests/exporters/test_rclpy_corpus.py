@@ -27,6 +27,23 @@ from test_rclpy_models import ros_environment, ros_python
 from test_rclpy_ros_tools import CHECK_INTERFACES
 
 from rosaadl.exporters.rclpy import GenerationOptions, generate_workspace
+from rosaadl.importers import aadl_text
+from rosaadl.transforms import rosmod_to_aadl as converter
+from rosaadl.transforms.instantiate import instantiate
+
+#: The Debian packages that give each ROS 2 tool (the tests say which to install when one is missing).
+DEBIAN_PACKAGE = {
+    "ament_flake8": "python3-ament-flake8",
+    "ament_pep257": "python3-ament-pep257",
+    "ament_copyright": "python3-ament-copyright",
+    "rosidl": "python3-rosidl",
+    "colcon": "colcon python3-colcon-ros",
+}
+
+
+def _missing(tool: str) -> None:
+    pytest.skip(f"{tool} is not installed (Debian package {DEBIAN_PACKAGE[tool]}); nothing of it was checked")
+
 
 OPTIONS = GenerationOptions(year=2024)
 CORPUS = corpus_dir() / "rosmod"
@@ -34,9 +51,6 @@ CORPUS = corpus_dir() / "rosmod"
 #: publishers and subscribers in one project).
 ROS_TOOLS_PROJECTS = ("ten-components",)
 ALL_ROS_TOOLS = os.environ.get("ROSAADL_ROS_TOOLS_ALL") == "1"
-
-aadl_text = pytest.importorskip("rosaadl.importers.aadl_text", reason="the AADL text reader has not landed")
-instantiate = pytest.importorskip("rosaadl.transforms.instantiate").instantiate
 
 
 def _textual_projects() -> list[Path]:
@@ -84,7 +98,7 @@ def _lint(packages: list[Path], cwd: Path) -> None:
     for tool in ("ament_flake8", "ament_pep257", "ament_copyright"):
         path = shutil.which(tool)
         if path is None:
-            continue
+            _missing(tool)
         done = subprocess.run(
             [path, *map(str, packages)],
             cwd=cwd,
@@ -97,9 +111,10 @@ def _lint(packages: list[Path], cwd: Path) -> None:
 
 
 def _rosidl(files: list[Path], cwd: Path) -> None:
+    assert files, "no .msg/.srv file to check"
     python = ros_python("rosidl")
-    if python is None or not files:
-        return
+    if python is None:
+        _missing("rosidl")
     done = subprocess.run(
         [python, "-c", CHECK_INTERFACES, *map(str, files)],
         cwd=cwd,
@@ -109,14 +124,14 @@ def _rosidl(files: list[Path], cwd: Path) -> None:
         timeout=300,
     )
     if "No module named 'rosidl" in done.stderr:
-        return
+        _missing("rosidl")
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
 
 
 def _colcon(root: Path) -> None:
     colcon = shutil.which("colcon")
     if colcon is None:
-        return
+        _missing("colcon")
     python = ros_python("colcon")
     env = ros_environment(python)
     # interface packages that need ROS 2 message packages Debian does not ship are left out
@@ -217,9 +232,6 @@ def _generate_project(
 ) -> tuple[int, int]:
     """(deployments generated, deployments in the project); the first deployment's .msg/.srv
     files go into ``interfaces`` under the project's name."""
-    converter = pytest.importorskip(
-        "rosaadl.transforms.rosmod_to_aadl", reason="the ROSMOD → AADL converter has not landed"
-    )
     converted = converter.rosmod_to_aadl(project)
     units = list(converted.model.units)
     library.units.extend(units)

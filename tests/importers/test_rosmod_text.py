@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from rosaadl import model
 from rosaadl.errors import Diagnostic, NameResolutionError, ParseError, RosaadlError
 from rosaadl.importers import rosmod_text
-from rosaadl.importers.rosmod_text import RosmodImportError, read_project, summarize
+from rosaadl.importers.rosmod_text import SUMMARY_KEYS, RosmodImportError, read_project, summarize
 
 # --------------------------------------------------------------------------- fixtures (own, small)
 
@@ -481,7 +481,7 @@ def test_garbage_and_binary_files(tmp_path):
 
 
 def test_too_large_file_is_refused(tmp_path, monkeypatch):
-    monkeypatch.setattr(rosmod_text, "MAX_FILE_BYTES", 100)
+    monkeypatch.setattr(rosmod_text.files, "MAX_FILE_BYTES", 100)  # where the reader looks it up
     errors = errors_of(write_v03(tmp_path))
     assert sorted(_loc(e)[0] for e in errors) == ["deployment.rdp", "lab.rhw", "software.rml"]
     assert all("above 100 bytes are refused" in e.message for e in errors)
@@ -647,6 +647,16 @@ def test_v04_refusals(tmp_path):
     assert "expected a ROSMOD v0.4 project" in only_error(folder).message
 
 
+def test_v04_dangling_object_reference_is_reported_not_a_crash(tmp_path):
+    folder = tmp_path / "v04"
+    folder.mkdir()
+    deployment = {"py/object": "__main__.Deployment", "children": {"_inner": [{"py/id": 99}]}}
+    data = {"py/object": "__main__.Project", "children": {"_inner": [deployment]}}
+    (folder / "x.rml").write_text(json.dumps(data))
+    err = only_error(folder)
+    assert isinstance(err, NameResolutionError) and "the host reference is missing" in err.message
+
+
 # --------------------------------------------------------------------------- corpus
 
 # Per project: packages, messages, services, components, timers, publishers, subscribers, clients,
@@ -687,22 +697,11 @@ EXPECTED = {
     "textual-v0.3/trajectory-planner": (1, 1, 1, 2, 1, 1, 1, 1, 1, 2, 33, 3, 2, 2),
     "textual-v0.3/uav": (1, 2, 0, 3, 1, 2, 2, 0, 0, 2, 33, 5, 2, 3),
 }
-_KEYS = (
-    "packages",
-    "messages",
-    "services",
-    "components",
-    "timers",
-    "publishers",
-    "subscribers",
-    "clients",
-    "servers",
-    "systems",
-    "hosts",
-    "deployments",
-    "max_nodes",
-    "max_component_instances",
-)
+# the columns of EXPECTED: the counts of summarize, in order, but for those INDEX.md has no column
+# for in its textual table (actions, containers, and the totals of nodes and component instances)
+_NOT_IN_INDEX = ("actions", "action_clients", "action_servers", "containers", "nodes", "component_instances")
+_KEYS = tuple(k for k in SUMMARY_KEYS if k not in _NOT_IN_INDEX)
+assert len(_KEYS) == 14
 
 
 def _rosmod_corpus() -> Path:

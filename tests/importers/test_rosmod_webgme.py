@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from rosaadl import model
 from rosaadl.errors import Diagnostic, ImportFormatError, RosaadlError
 from rosaadl.importers import rosmod_webgme
-from rosaadl.importers.rosmod_text import RosmodImportError, summarize
+from rosaadl.importers.rosmod_text import SUMMARY_KEYS, RosmodImportError, summarize
 from rosaadl.importers.rosmod_webgme import load_project_json, project_names, read_webgmex
 
 # --------------------------------------------------------------------------- a small export, built here
@@ -406,11 +406,11 @@ def test_corrupt_member_data(tmp_path):
 
 def test_size_and_member_caps(tmp_path, monkeypatch):
     path = write_export(tmp_path / "big.webgmex", build_export(), {"blob.content": bytes(100_000)})
-    monkeypatch.setattr(rosmod_webgme, "MAX_TOTAL_BYTES", 50_000)
+    monkeypatch.setattr(rosmod_webgme.archive, "MAX_TOTAL_BYTES", 50_000)
     (err,) = import_error(path)
     assert "would unpack to" in err.message
-    monkeypatch.setattr(rosmod_webgme, "MAX_TOTAL_BYTES", 200 * 1024 * 1024)
-    monkeypatch.setattr(rosmod_webgme, "MAX_MEMBERS", 1)
+    monkeypatch.setattr(rosmod_webgme.archive, "MAX_TOTAL_BYTES", 200 * 1024 * 1024)
+    monkeypatch.setattr(rosmod_webgme.archive, "MAX_MEMBERS", 1)
     (err,) = import_error(path)
     assert "members" in err.message
 
@@ -461,26 +461,9 @@ EXPECTED = {
     ("2016", "Blinking LEDs"): (1, 1, 0, 0, 1, 0, 1, 1, 0, 0, 0, 0, 2, 34, 0, 0, 0, 0),
     ("2016", "Publish Subscribe"): (1, 1, 0, 0, 2, 1, 1, 1, 0, 0, 0, 0, 2, 34, 1, 1, 1, 2),
 }
-_KEYS = (
-    "packages",
-    "messages",
-    "services",
-    "actions",
-    "components",
-    "timers",
-    "publishers",
-    "subscribers",
-    "clients",
-    "servers",
-    "action_clients",
-    "action_servers",
-    "systems",
-    "hosts",
-    "deployments",
-    "containers",
-    "nodes",
-    "component_instances",
-)
+# the columns of INDEX.md's WebGME table: the counts of summarize, in order, but for the maxima
+_KEYS = tuple(k for k in SUMMARY_KEYS if not k.startswith("max_"))
+assert len(_KEYS) == 18
 SEEDS = {"2018": "samples-2018-05-19_noTLC.webgmex", "2016": "samples-2016-06-13_noTLC.webgmex"}
 
 

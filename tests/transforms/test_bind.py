@@ -16,20 +16,19 @@ from rosaadl import model
 from rosaadl.analysis.deployment import search_deployment
 from rosaadl.analysis.report import run_analyses
 from rosaadl.errors import ModelError, ParseError
-from rosaadl.exporters.aadl_text import write_model
+from rosaadl.exporters.aadl_text import write_model, write_unit
 from rosaadl.importers.aadl_text import read_files, read_string
 from rosaadl.importers.rosmod_text import read_project
 from rosaadl.transforms.bind import (
     MAX_BINDINGS_BYTES,
     BindingError,
+    BindingsFile,
     bind_deployment,
-    bind_project,
     parse_bindings,
-    propose_binding,
-    read_bindings,
     robot_cores,
 )
 from rosaadl.transforms.instantiate import instantiate
+from rosaadl.workflow.binding import bind_project, propose_binding, read_bindings
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "tracking"
 LITTLE1 = "OdroidXU4.Exynos_SOC.little_procs_cluster.little_proc1"
@@ -112,7 +111,7 @@ def test_pioneer_is_bound_to_its_little_core_with_the_a7_measurements(bound) -> 
 
 
 def test_the_package_is_shaped_like_the_librarys_reference_systems(bound) -> None:
-    text = bound["pioneer_3dx"].text()
+    text = write_unit(bound["pioneer_3dx"].package)
     assert "with nd_ocv_color_tracking, nd_pos_to_cmd, nd_usb_cam, pioneer_3dx, ros;" in text
     assert "robot: system pioneer_3dx::Pioneer_3DX.impl;" in text
     assert "ROSbus: virtual bus ros::ROSbus.impl;" in text
@@ -147,7 +146,7 @@ def test_rosmod_rates_go_on_the_library_threads(bound) -> None:
         "cmd_publisher": (s("0.1"), s("0.1"), 50),
         "": (s("0.1"), None, 50),
     }
-    text = bound["pioneer_3dx"].text()
+    text = write_unit(bound["pioneer_3dx"].package)
     assert "Period => 50 ms applies to tracker_node.image_tracker;" in text
     assert "Period => 100 ms applies to tracker_node.point_broadcaster;" in text
 
@@ -155,11 +154,9 @@ def test_rosmod_rates_go_on_the_library_threads(bound) -> None:
 def test_binding_is_deterministic_and_reads_back(project, library, bound) -> None:
     again = bind_project(project, read_bindings(EXAMPLE / "bindings.json"), library)
     for name, b in bound.items():
-        text = b.text()
-        assert again[name].text() == text
+        text = write_unit(b.package)
+        assert write_unit(again[name].package) == text
         back = read_string(text, "back.aadl")
-        from rosaadl.exporters.aadl_text import write_unit
-
         assert write_unit(back.units[0]) == text
 
 
@@ -179,6 +176,12 @@ def test_leo_rover_fits_on_one_cortex_a72_core(instances) -> None:
     # 8411/50000 + 7283/50000 + 104/100000
     assert loads(instances["leo_rover"]) == {"RaspberryPi4B.BCM2711_SOC.proc1": Fraction(31492, 100000)}
     assert run_analyses(instances["leo_rover"]).ok
+
+
+def test_an_unknown_process_of_a_bound_deployment_is_a_binding_error(bound) -> None:
+    assert bound["pioneer_3dx"].node("tracker_node").process == "tracker_node"
+    with pytest.raises(BindingError, match="has no process 'ghost_node'"):
+        bound["pioneer_3dx"].node("ghost_node")
 
 
 def test_robot_cores_lists_every_core_with_its_type(library) -> None:
@@ -534,7 +537,8 @@ def test_missing_bindings_file(tmp_path) -> None:
 
 def test_the_library_is_read_when_not_given(project) -> None:
     spec = read_bindings(EXAMPLE / "bindings.json").deployments["leo_rover"]
-    assert bind_deployment(project, spec).root == "leo_rover_bound::tracking.impl"
+    bound = bind_project(project, BindingsFile(file=None, deployments={"leo_rover": spec}))
+    assert bound["leo_rover"].root == "leo_rover_bound::tracking.impl"
 
 
 def test_only_rosmod_projects_are_bound(library) -> None:

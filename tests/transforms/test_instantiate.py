@@ -459,6 +459,8 @@ def test_unknown_root_and_type_root():
     assert list(ws.instances) == []
     with pytest.raises(UsageError):
         instantiate(ws, "Pkg::sys.i", compatibility="osate-1")
+    with pytest.raises(UsageError, match="not 42"):
+        instantiate(ws, 42)
     assert instantiate(ws, "SYS.I").classifier == "Pkg::sys.i"  # unqualified, declared once
     assert COMPATIBILITY_MODES == ("current", "osate-2.0")
 
@@ -496,9 +498,9 @@ def test_containment_and_extends_cycles():
 
 
 def test_huge_arrays_fail_instead_of_hanging(monkeypatch):
-    from rosaadl.transforms import instantiate as module
+    from rosaadl.transforms.instantiate import hierarchy
 
-    monkeypatch.setattr(module, "MAX_COMPONENT_INSTANCES", 50)
+    monkeypatch.setattr(hierarchy, "MAX_COMPONENT_INSTANCES", 50)
     ws = workspace(
         ctype("t", "thread"),
         ctype("s", "system"),
@@ -637,9 +639,8 @@ def test_osate_corpus_counts(corpus, case):
     source = (instance_file.parent / link.get("href").partition("#")[0]).resolve()
     if not source.is_file():
         pytest.skip(f"the source of the root implementation ({source.name}) is not in the corpus")
-    aadl_text = pytest.importorskip(
-        "rosaadl.importers.aadl_text", reason="the AADL text reader has not landed"
-    )
+    from rosaadl.importers import aadl_text
+
     files = sorted(p for p in folder.rglob("*") if p.suffix.lower() in (".aadl", ".aadl2"))
     # read without the reader's name check: several origin repositories lack packages that only
     # type features (data types, bus types), which OSATE left unresolved too; instantiation
@@ -855,10 +856,12 @@ def test_a_feature_group_member_is_found_by_name_or_else_by_position_at_either_e
     """OSATE's findDestinationFeatureInstance / findSourceFeatureInstance: the member of the
     feature group at one end that matches the leaf the connection reached the other end's
     group through; by position when an inverse names its features differently."""
-    from rosaadl.transforms import instantiate as inst
+    from rosaadl.transforms.instantiate.connection_instances import ConnectionInfo
+    from rosaadl.transforms.instantiate.feature_group_matching import find_member
+    from rosaadl.transforms.instantiate.mirrors import FeatureMirror
 
     def fi(name, parent=None, children=()):
-        node = inst._FI(None, None, name, name.lower(), 0, "eventPort", "out", None, parent)
+        node = FeatureMirror(None, None, name, name.lower(), 0, "eventPort", "out", None, parent)
         for child in children:
             child.parent = node
         node.children = list(children)
@@ -870,14 +873,14 @@ def test_a_feature_group_member_is_found_by_name_or_else_by_position_at_either_e
     same = fi("fb", children=[fi("p1"), fi("p2")])
     renamed = fi("fb", children=[fi("q1"), fi("q2")])
     # towards the destination: x -> fa.P2, then fa -> fb
-    info = inst._Info(x)
+    info = ConnectionInfo(x)
     info.sources, info.destinations = [x, outs], [p2, renamed]
-    assert inst._find_member(info, same, at_destination=True) is same.children[1]
-    assert inst._find_member(info, renamed, at_destination=True) is renamed.children[1]
+    assert find_member(info, same, at_destination=True) is same.children[1]
+    assert find_member(info, renamed, at_destination=True) is renamed.children[1]
     # towards the source, the mirror image: fb -> fa, then fa.P2 -> x
     info.sources, info.destinations = [renamed, p2], [outs, x]
-    assert inst._find_member(info, same, at_destination=False) is same.children[1]
-    assert inst._find_member(info, renamed, at_destination=False) is renamed.children[1]
+    assert find_member(info, same, at_destination=False) is same.children[1]
+    assert find_member(info, renamed, at_destination=False) is renamed.children[1]
     # no step leaves a feature group: nothing to narrow to
     info.sources, info.destinations = [x], [renamed]
-    assert inst._find_member(info, renamed, at_destination=True) is None
+    assert find_member(info, renamed, at_destination=True) is None

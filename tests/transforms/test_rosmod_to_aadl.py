@@ -4,7 +4,6 @@ and every corpus project converted, written, read back and instantiated."""
 from __future__ import annotations
 
 import functools
-import importlib.util
 import logging
 import zipfile
 from decimal import Decimal
@@ -22,27 +21,13 @@ from rosaadl.transforms.aadl_to_rosmod import aadl_to_rosmod
 from rosaadl.transforms.rosmod_to_aadl import (
     NameScope,
     aadl_identifier,
-    library_unit_names,
     rosmod_to_aadl,
     seconds_to_time,
     time_to_seconds,
 )
 from rosaadl.units import Quantity
 from rosaadl.workflow.convert import convert_project_files
-
-_WRITER = importlib.util.find_spec("rosaadl.exporters.aadl_text") is not None
-_READER = _WRITER and importlib.util.find_spec("rosaadl.importers.aadl_text") is not None
-_INSTANTIATE = importlib.util.find_spec("rosaadl.transforms.instantiate") is not None
-needs_writer = pytest.mark.skipif(
-    not _WRITER, reason="the AADL text writer (exporters/aadl_text) has not landed"
-)
-needs_reader = pytest.mark.skipif(
-    not _READER,
-    reason="the AADL text writer or reader (exporters/aadl_text, importers/aadl_text) has not landed",
-)
-needs_instantiate = pytest.mark.skipif(
-    not (_READER and _INSTANTIATE), reason="the AADL reader or the instantiator has not landed"
-)
+from rosaadl.workflow.workspace import library_unit_names
 
 # --------------------------------------------------------------------------- a small project of our own
 
@@ -208,6 +193,12 @@ def test_time_to_seconds_gives_plain_decimals():
     assert time_to_seconds(3, "Bytes") is None
 
 
+@pytest.mark.parametrize("seconds", ["soon", None, "nan", "inf", [1]])
+def test_seconds_to_time_refuses_what_is_not_a_number_of_seconds(seconds):
+    with pytest.raises(TransformationError, match="not a number of seconds"):
+        seconds_to_time(seconds)
+
+
 # --------------------------------------------------------------------------- the mapping
 
 
@@ -358,7 +349,6 @@ def test_deployment_nodes_bindings_and_topics(project):
     ]
 
 
-@needs_writer
 def test_output_is_deterministic(project):
     from rosaadl.exporters.aadl_text import write_unit
 
@@ -520,12 +510,10 @@ def property_dispatch(thread) -> str:
     return str(property_value(thread, "Dispatch_Protocol"))
 
 
-@needs_instantiate
 def test_small_project_reads_back_and_instantiates(project, tmp_path):
     _check_reads_and_instantiates(project, tmp_path / "aadl")
 
 
-@needs_instantiate
 def test_instance_carries_times_bindings_and_topics(project, tmp_path):
     from rosaadl.importers.aadl_text import read_files
     from rosaadl.properties import property_value
@@ -596,7 +584,6 @@ def read_webgme_project(root: str, archive: str, name: str):
     return rosmod_webgme.read_webgmex(Path(root) / "rosmod" / "webgme" / archive, project=name)[0]
 
 
-@needs_instantiate
 @pytest.mark.parametrize("relative", CORPUS_PROJECTS)
 def test_corpus_textual_project_converts_reads_and_instantiates(corpus, relative, tmp_path, caplog):
     caplog.set_level(logging.ERROR)
@@ -604,7 +591,6 @@ def test_corpus_textual_project_converts_reads_and_instantiates(corpus, relative
     _check_reads_and_instantiates(project, tmp_path)
 
 
-@needs_instantiate
 @pytest.mark.parametrize(("archive", "name"), WEBGME_PROJECTS)
 def test_corpus_webgme_project_converts_reads_and_instantiates(corpus, archive, name, tmp_path, caplog):
     caplog.set_level(logging.ERROR)
@@ -724,7 +710,6 @@ def test_a_topic_inside_a_node_is_bound_from_the_deployment(project):
 # ------------------------------------------------------------- files in, files out (the CLI's work)
 
 
-@needs_writer
 def test_convert_project_files(tmp_path):
     folder = write_files(tmp_path / "demo-project", FILES)
     warnings = []
@@ -744,7 +729,6 @@ def test_convert_project_files(tmp_path):
     assert "package nav\n" in (tmp_path / "out" / "nav.aadl").read_text()
 
 
-@needs_writer
 def test_convert_project_files_puts_each_project_of_an_archive_in_its_folder(corpus, tmp_path):
     archive = corpus / "rosmod" / "webgme" / "samples-2018-05-19_noTLC.webgmex"
     written = convert_project_files(archive, tmp_path / "out", trace_file=tmp_path / "out" / "t.json")
@@ -755,7 +739,6 @@ def test_convert_project_files_puts_each_project_of_an_archive_in_its_folder(cor
     assert {p.parent for p in one} == {tmp_path / "one"}
 
 
-@needs_writer
 def test_convert_project_files_fails_before_writing(tmp_path):
     files = dict(FILES)
     files["01-Software/nav.rml"] = files["01-Software/nav.rml"].replace(
@@ -781,7 +764,7 @@ def test_names_that_clash_with_the_library_or_each_other():
         software=new("rosmod.Software", name="sw", packages=packages),
         systems=[new("rosmod.System", name="ros", hosts=hosts)],
     )
-    result = rosmod_to_aadl(project)
+    result = rosmod_to_aadl(project, reserved_units=library_unit_names())
     names = [u.name for u in result.model.units]
     assert names == ["clash_project", "ros_1", "ROS_Properties_1", "x", "ros_hardware"]
     assert prop(result.model.units[1], "ROSMOD_Properties::Name") == "ros"
