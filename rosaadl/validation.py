@@ -5,6 +5,7 @@ from __future__ import annotations
 from pyecore.ecore import EObject, EProxy
 
 from rosaadl import model
+from rosaadl.element_keys import element_key
 from rosaadl.errors import Diagnostic, Location
 
 __all__ = ["validate"]
@@ -23,8 +24,6 @@ _NAME_REQUIRED = (
 
 
 def _where(obj: EObject) -> str:
-    from rosaadl.transforms.trace import element_key
-
     return element_key(obj)
 
 

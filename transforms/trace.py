@@ -7,7 +7,7 @@ insert siblings, unlike positional XMI fragments. A trace is saved and read back
 (:func:`rosaadl.model.save` / :func:`rosaadl.model.load`); :class:`TraceIndex` answers "what did
 this source become" and "where did this target come from" from a live or a reloaded trace.
 A rule's targets are usually made before they have a container: :func:`key_targets` keys them
-again once the target model is complete (:class:`KeyCache` computes each container's key once).
+again once the target model is complete. The keys are those of :mod:`rosaadl.element_keys`.
 """
 
 from __future__ import annotations
@@ -19,11 +19,11 @@ from pyecore.ecore import EObject
 
 from rosaadl import model
 from rosaadl.bulk import FastBuilder
+from rosaadl.element_keys import element_key, find_by_key  # re-exported: the keys a trace holds
 from rosaadl.errors import ModelError
 
 __all__ = [
     "element_key",
-    "KeyCache",
     "find_by_key",
     "new_trace",
     "add_link",
@@ -32,73 +32,6 @@ __all__ = [
     "save_trace",
     "load_trace",
 ]
-
-
-def _step(obj: EObject) -> str:
-    feature = obj.eContainmentFeature()
-    container = obj.eContainer()
-    name = getattr(obj, "name", None) if obj.eClass.findEStructuralFeature("name") is not None else None
-    if name:
-        return f"{feature.name}[{name}]"
-    if feature.many:
-        return f"{feature.name}.{container.eGet(feature).index(obj)}"
-    return feature.name
-
-
-def element_key(obj: EObject) -> str:
-    """The stable key of ``obj`` inside its model: containment features and names from the root."""
-    steps = []
-    current = obj
-    while current.eContainer() is not None:
-        steps.append(_step(current))
-        current = current.eContainer()
-    return "/" + "/".join(reversed(steps))
-
-
-class KeyCache:
-    """:func:`element_key` for many objects of one model, each container's key computed once."""
-
-    def __init__(self) -> None:
-        self._keys: dict[int, str] = {}
-
-    def key(self, obj: EObject) -> str:
-        found = self._keys.get(id(obj))
-        if found is None:
-            container = obj.eContainer()
-            found = "/" if container is None else f"{self.key(container).rstrip('/')}/{_step(obj)}"
-            self._keys[id(obj)] = found
-        return found
-
-
-def find_by_key(root: EObject, key: str) -> EObject | None:
-    """The object with :func:`element_key` ``key`` under ``root`` (None when it is gone)."""
-    if key in ("", "/"):
-        return root
-    current = root
-    for step in key.strip("/").split("/"):
-        if "[" in step and step.endswith("]"):
-            feature_name, _, name = step[:-1].partition("[")
-            feature = current.eClass.findEStructuralFeature(feature_name)
-            if feature is None:
-                return None
-            values = current.eGet(feature) if feature.many else [current.eGet(feature)]
-            current = next((v for v in values if v is not None and getattr(v, "name", None) == name), None)
-        elif "." in step:
-            feature_name, _, index = step.partition(".")
-            feature = current.eClass.findEStructuralFeature(feature_name)
-            if feature is None or not feature.many:
-                return None
-            if not index.isdigit():
-                return None
-            values = current.eGet(feature)
-            position = int(index)
-            current = values[position] if position < len(values) else None
-        else:
-            feature = current.eClass.findEStructuralFeature(step)
-            current = current.eGet(feature) if feature is not None else None
-        if current is None:
-            return None
-    return current
 
 
 def _end(obj: EObject, builder: FastBuilder) -> EObject:
@@ -140,10 +73,10 @@ def add_link(
 def key_targets(trace: EObject) -> None:
     """Key every target end again where its object is now: the targets of a transformation get
     their containers after their link was recorded."""
-    keys = KeyCache()
+    keys: dict[int, str] = {}
     for link in trace.links:
         for end in link.targets:
-            end.path = keys.key(end.object)
+            end.path = element_key(end.object, keys)
 
 
 class TraceIndex:

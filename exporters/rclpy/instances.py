@@ -11,11 +11,11 @@ from __future__ import annotations
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
-from functools import cache
 
-from pyecore.ecore import EClass, EObject
+from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.element_keys import element_key
 from rosaadl.properties import EnumLiteral, python_value
 
 __all__ = [
@@ -124,31 +124,12 @@ _MISSING = object()
 
 
 def key(obj: EObject) -> str:
-    """The stable key of ``obj`` (:func:`rosaadl.transforms.trace.element_key`)."""
+    """The stable key of ``obj`` (:func:`rosaadl.element_keys.element_key`), remembered for
+    the instance's elements within :func:`caching`."""
     cache = _CACHE.get()
-    if cache is not None:
-        found = cache.get(("key", id(obj)))
-        if found is not None:
-            return found
-    container = obj.eContainer()
-    if container is None:
-        result = "/"
-    else:
-        feature = obj.eContainmentFeature()
-        name = getattr(obj, "name", None) if "name" in _features(obj.eClass) else None
-        if name:
-            step = f"{feature.name}[{name}]"
-        elif feature.many:
-            step = f"{feature.name}.{container.eGet(feature).index(obj)}"
-        else:
-            step = feature.name
-        parent = key(container)
-        result = f"{parent.rstrip('/')}/{step}"
-    if cache is not None:
-        cache[("key", id(obj))] = result
-    return result
-
-
-@cache
-def _features(eclass: EClass) -> frozenset[str]:
-    return frozenset(f.name for f in eclass.eAllStructuralFeatures())
+    if cache is None:
+        return element_key(obj)
+    keys = cache.get("keys")
+    if keys is None:
+        keys = cache["keys"] = {}
+    return element_key(obj, keys)

@@ -736,7 +736,7 @@ def generate_workspace(
 
     ``trace`` tells renames of model elements since the previous generation: a trace model (or
     a saved one) whose links go from the old element (source, by its element key, see
-    :func:`rosaadl.transforms.trace.element_key`) to the element it became (target); the blocks
+    :func:`rosaadl.element_keys.element_key`) to the element it became (target); the blocks
     of a renamed element, and of everything it contains, move to their new markers.  ``force``
     overwrites files that carry no marker; ``dry_run`` computes everything and writes nothing.
     Errors are located :class:`~rosaadl.errors.RosaadlError` s raised before any file is written.

@@ -13,6 +13,7 @@ from pyecore.ecore import EObject
 from rosaadl import model
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import RosaadlError, TransformationError
+from rosaadl.transforms import trace as tracing
 from rosaadl.transforms.rosmod_to_aadl import deployment, hardware, project_unit, software
 from rosaadl.transforms.rosmod_to_aadl.factory import AadlFactory
 from rosaadl.transforms.rosmod_to_aadl.interfaces import interface_units
@@ -37,41 +38,6 @@ class ConversionResult:
     @property
     def units(self) -> list[EObject]:
         return list(self.model.units)
-
-
-class _KeyCache:
-    """:func:`rosaadl.transforms.trace.element_key` for many objects of one model, each
-    container's key computed once (the targets were made before they had a container, so
-    their keys are computed when the model is complete)."""
-
-    def __init__(self) -> None:
-        self._keys: dict[int, str] = {}
-        self._named: dict[int, bool] = {}
-
-    def key(self, obj: EObject) -> str:
-        found = self._keys.get(id(obj))
-        if found is not None:
-            return found
-        container = obj.eContainer()
-        if container is None:
-            key = "/"
-        else:
-            eclass = obj.eClass
-            named = self._named.get(id(eclass))
-            if named is None:
-                named = self._named[id(eclass)] = eclass.findEStructuralFeature("name") is not None
-            feature = obj.eContainmentFeature()
-            name = obj.name if named else None
-            if name:
-                step = f"{feature.name}[{name}]"
-            elif feature.many:
-                step = f"{feature.name}.{container.eGet(feature).index(obj)}"
-            else:
-                step = feature.name
-            parent = self.key(container)
-            key = f"{parent.rstrip('/')}/{step}"
-        self._keys[id(obj)] = key
-        return key
 
 
 _PREDECLARED = frozenset(
@@ -150,10 +116,7 @@ def rosmod_to_aadl(
             for dep in project.deployments
         }
         if trace:
-            keys = _KeyCache()
-            for link in result.trace.links:
-                for end in link.targets:
-                    end.path = keys.key(end.object)
+            tracing.key_targets(result.trace)
     return ConversionResult(
         model=aadl, roots=roots, trace=result.trace if trace else None, warnings=list(result.warnings)
     )
