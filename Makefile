@@ -27,6 +27,7 @@ bench: $(STAMP)
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
+	$(BIN)/python tests/layers.py
 	$(BIN)/ruff format --check --diff . || true
 
 clean:
