@@ -42,7 +42,7 @@ from rosaadl.analysis.instance_values import (
     system_modes,
 )
 from rosaadl.analysis.registry import Analysis, register
-from rosaadl.analysis.rendering import short_path, table
+from rosaadl.analysis.rendering import as_float, short_path, table
 from rosaadl.errors import Diagnostic, Location
 
 __all__ = [
@@ -68,7 +68,7 @@ log = logging.getLogger(__name__)
 def java_double(value: Fraction | float | int) -> str:
     """``value`` as Java's ``Double.toString`` prints the nearest double: ``16.0``, ``0.125``,
     ``1.0E7``, ``1.0E-4`` (shortest digits that read back to the same double)."""
-    number = float(value)
+    number = as_float(value)  # Java too prints an infinity for a number beyond the doubles
     if number != number:
         return "NaN"
     if number in (float("inf"), float("-inf")):

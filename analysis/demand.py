@@ -29,7 +29,8 @@ from typing import Any
 
 from rosaadl.analysis.instance_values import ProcessorBindings, PropertyReader, SystemMode, category_of
 from rosaadl.analysis.rendering import category_word, fmt3, json_number
-from rosaadl.errors import Diagnostic, RosaadlError
+from rosaadl.arguments import describe
+from rosaadl.errors import Diagnostic, RosaadlError, UsageError
 from rosaadl.model import component_instances, instance_path
 
 __all__ = [
@@ -367,6 +368,9 @@ def contains(outer: Any, inner: Any) -> bool:
 
 
 def ancestors(ci: Any) -> Iterator[Any]:
+    """The components that contain ``ci``, innermost first."""
+    if not hasattr(ci, "eContainer"):
+        raise UsageError(f"ancestors(): ci must be an instance object, not {describe(ci)}")
     current = ci.eContainer()
     while current is not None:
         yield current

@@ -10,10 +10,13 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import re
 from collections.abc import Iterable, Sequence
 from fractions import Fraction
 from typing import Any
+
+from rosaadl.errors import UsageError
 
 __all__ = [
     "json_number",
@@ -24,14 +27,24 @@ __all__ = [
     "csv_text",
     "squeeze",
     "category_word",
+    "as_float",
 ]
+
+
+def as_float(value: Any) -> float:
+    """``float(value)``, saturating: an exact number too large for a float (``1e308`` MIPS in
+    KIPS) is an infinity, not an OverflowError."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
 
 
 def json_number(value: Any) -> Any:
     """An exact number for JSON: ``Fraction(3)`` → ``3``, ``Fraction(1, 3)`` → ``0.333…``;
     anything else as it is."""
     if isinstance(value, Fraction):
-        return int(value) if value.denominator == 1 else float(value)
+        return int(value) if value.denominator == 1 else as_float(value)
     return value
 
 
@@ -46,18 +59,21 @@ def fmt(value: Any, digits: int = 2) -> str:
     if isinstance(value, int):
         return str(value)
     if isinstance(value, (Fraction, float)):
-        return f"{float(value):.{digits}f}"
+        return f"{as_float(value):.{digits}f}"
     return str(value)
 
 
 def fmt3(value: Fraction | None) -> str:
     """Three decimals, as OSATE's reports print MIPS and KByte (``None`` is ``0.000``)."""
-    return f"{float(value or 0):.3f}"
+    return f"{as_float(value or 0):.3f}"
 
 
 def table(headers: Sequence[str], rows: Iterable[Sequence[Any]]) -> list[str]:
     """A plain text table: a header line, a rule, one line per row; numbers right-aligned."""
     cells = [[str(h) for h in headers]] + [[c if isinstance(c, str) else fmt(c) for c in row] for row in rows]
+    for number, row in enumerate(cells[1:], 1):
+        if len(row) != len(headers):
+            raise UsageError(f"table(): row {number} has {len(row)} cells for {len(headers)} headers")
     widths = [max(len(row[i]) for row in cells) for i in range(len(headers))]
     out = []
     for n, row in enumerate(cells):
@@ -83,7 +99,7 @@ def _csv_value(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, Fraction):
-        return str(value.numerator) if value.denominator == 1 else repr(float(value))
+        return str(value.numerator) if value.denominator == 1 else repr(as_float(value))
     if isinstance(value, float):
         return repr(value)
     return str(value)

@@ -46,6 +46,7 @@ from pathlib import Path
 from typing import Any
 
 from rosaadl.analysis.registry import Analysis, AnalysisContext, analyses, analysis, parse_only
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic
 
 __all__ = ["ANALYSES", "DEFAULT_ANALYSES", "AnalysisReport", "run_analyses", "parse_only"]
@@ -186,10 +187,13 @@ class AnalysisReport:
 
     def write_csv(self, directory: str | Path) -> list[Path]:
         """Write :meth:`csv_files` into ``directory`` (created if needed), atomically."""
-        from rosaadl.fileio import atomic_write_text, safe_join
+        from rosaadl.fileio import atomic_write_text, cannot_write, safe_join
 
         folder = Path(directory)
-        folder.mkdir(parents=True, exist_ok=True)
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise cannot_write(folder, exc) from None
         written = []
         for name, content in self.csv_files().items():
             target = safe_join(folder, name)
@@ -201,6 +205,7 @@ class AnalysisReport:
 # =============================================================================== running
 
 
+@checked
 def run_analyses(
     source: Any,
     only: str | Iterable[str] | None = None,

@@ -43,6 +43,7 @@ from rosaadl.analysis.tasks import (
     taskset_from_instance,
     time_base,
 )
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, Location, ModelError
 
 __all__ = [
@@ -767,6 +768,7 @@ def _prio_list(tasks: Sequence[Task], attribute: str) -> list[int]:
     return [mapping.get(t.name, t.priority) for t in tasks]
 
 
+@checked
 def analyze_schedulability(source: TaskSet | Any, *, time_unit: str = "us") -> SchedulabilityResult:
     """Cheddar's feasibility tests on every processor and core of ``source`` (a TaskSet, or an
     instance model read with :func:`~rosaadl.analysis.tasks.taskset_from_instance`)."""

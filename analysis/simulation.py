@@ -43,6 +43,7 @@ from rosaadl.analysis.tasks import (
     taskset_from_instance,
     time_base,
 )
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, Location, ModelError
 
 __all__ = [
@@ -244,6 +245,7 @@ def job_count(tasks: Sequence[Task], horizon: Time) -> int:
     return count
 
 
+@checked
 def simulate(
     source: TaskSet | Any,
     *,

@@ -15,7 +15,8 @@ from collections import deque
 from typing import Any
 
 from rosaadl.analysis.tasks import Protocol, Scheduler, Task, TaskSet, Time
-from rosaadl.errors import Diagnostic, Location
+from rosaadl.arguments import expect_number
+from rosaadl.errors import Diagnostic, Location, UsageError
 
 __all__ = ["Engine"]
 
@@ -99,7 +100,9 @@ class Engine:
         record_schedule: bool,
         diagnostics: list[Diagnostic],
     ) -> None:
-        self.base = base
+        self.base = expect_number(base, "base", integer=True, positive=True)
+        if horizon < 0:
+            raise UsageError(f"the simulation horizon must not be negative, got {horizon}")
         self.horizon = int(horizon * base)
         self.record_schedule = record_schedule
         self.diagnostics = diagnostics

@@ -43,6 +43,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import fileio
 from rosaadl import model as _model
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, ExportError, Location
 
 __all__ = ["render_project", "write_project", "text_normal_form", "MARKER_TEXT"]
@@ -527,6 +528,7 @@ def render_project(project: EObject, *, warnings: list[Diagnostic] | None = None
     return _Writer(project, _Plan(warnings)).run()
 
 
+@checked
 def write_project(
     project: EObject, out_dir: str | os.PathLike[str], *, warnings: list[Diagnostic] | None = None
 ) -> list[Path]:

@@ -49,6 +49,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cache, lru_cache
 
+from rosaadl.errors import UsageError
+
 __all__ = [
     "ERAS",
     "CURRENT_ERA",
@@ -673,7 +675,7 @@ class EraTable:
 
     def __init__(self, era: str) -> None:
         if era not in _ERA_SETS:
-            raise KeyError(f"unknown OSATE era {era!r} (known: {', '.join(ERAS)})")
+            raise UsageError(f"unknown OSATE era {era!r} (known: {', '.join(ERAS)})")
         self.era = era
         self._sets: dict[str, _SetFacts] = {}
         for set_name, (plugin, key) in _ERA_SETS[era].items():
@@ -775,7 +777,7 @@ def predeclared_uri(era: str, property_set: str) -> str:
     """The URI an OSATE of ``era`` writes for a predeclared set (2014: workspace-relative)."""
     plugin = table(era).plugin_of(property_set)
     if plugin is None:
-        raise KeyError(f"{property_set} is not a predeclared property set of the {era} era")
+        raise UsageError(f"{property_set} is not a predeclared property set of the {era} era")
     name = table(era)._sets[property_set.lower()].name
     if era == "2014":
         return f"Plugin_Resources/{name}.aadl"

@@ -530,6 +530,10 @@ def _as_fields(found: Sequence[FieldSpec] | MessageSpec | None) -> Sequence[Fiel
     return found
 
 
+#: How deep message types may nest when their size is computed (deeper is not a real message).
+_MAX_NESTING = 100
+
+
 def _size(
     fields: Sequence[FieldSpec], resolve: Resolver | None, stack: tuple[str, ...]
 ) -> tuple[int | None, str | None]:
@@ -547,6 +551,8 @@ def _size(
         else:
             if spec.type in stack:
                 return None, f"field {spec.name!r}: type {spec.type} contains itself"
+            if len(stack) > _MAX_NESTING:
+                return None, f"field {spec.name!r}: types nested more than {_MAX_NESTING} deep"
             nested = _as_fields(resolve(spec.type)) if resolve is not None else None
             if nested is None:
                 std = standard_message(spec.type)

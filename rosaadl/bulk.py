@@ -153,7 +153,7 @@ def _class_defaults(cls: type) -> None:
     so), which is what a dynamic object reads; a static class is refused.
     """
     if cls.__dict__.get("_staticEClass", True) is not False:
-        raise TypeError(f"{cls.__name__} is not a class made from an EClass; use its constructor")
+        raise ModelError(f"{cls.__name__} is not a class made from an EClass; use its constructor")
     for name in _NONE_ATTRIBUTES:
         setattr(cls, name, None)
     cls._isset = _IssetOnRead()
@@ -239,7 +239,7 @@ class FeatureSlot:
         self.holder = None if self.many else _value_holder(feature)
         if self.many:
             if feature.derived:
-                raise TypeError(f"{feature.name} is derived; it cannot be filled")
+                raise ModelError(f"{feature.name} is derived; it cannot be filled")
             if feature.ordered and feature.unique:
                 base = EOrderedSet
             elif feature.ordered:
@@ -285,7 +285,8 @@ class FastFactory:
         if found is None:
             feature = eclass.findEStructuralFeature(name)
             if feature is None:
-                raise KeyError(f"{eclass.name} has no feature {name}")
+                allowed = ", ".join(sorted(f.name for f in eclass.eAllStructuralFeatures()))
+                raise ModelError(f"{eclass.name} has no feature {name!r} (expected one of: {allowed})")
             found = self._slots[key] = FeatureSlot(feature)
         return found
 
@@ -490,11 +491,7 @@ class FastBuilder:
         return cls
 
     def slot(self, eclass: EClass, name: str) -> FeatureSlot:
-        try:
-            return self.factory.slot(eclass, name)
-        except KeyError:
-            allowed = ", ".join(sorted(f.name for f in eclass.eAllStructuralFeatures()))
-            raise ModelError(f"{eclass.name} has no feature {name!r} (expected one of: {allowed})") from None
+        return self.factory.slot(eclass, name)
 
     def literal(self, enum_name: str, text: str):
         """The literal object of enumeration ``enum_name`` for a name or AADL spelling."""

@@ -207,6 +207,13 @@ class CollectedErrors:
     errors: list
 
     def __init__(self, errors: Sequence[RosaadlError]) -> None:
+        if (
+            not isinstance(errors, Sequence)
+            or not all(isinstance(e, RosaadlError) for e in errors)
+            or not errors
+        ):
+            shown = f"{errors!r:.80}"
+            raise UsageError(f"{type(self).__name__} stands for one or more located errors, not {shown}")
         first = errors[0]
         more = len(errors) - 1
         message = first.message if not more else f"{first.message} (and {more} more)"

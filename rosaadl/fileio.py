@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -12,7 +13,8 @@ from typing import IO
 
 from lxml import etree
 
-from rosaadl.errors import ExportError, ImportFormatError, Location
+from rosaadl.arguments import expect_path
+from rosaadl.errors import ExportError, ImportFormatError, Location, RosaadlError, UsageError
 
 __all__ = [
     "atomic_write",
@@ -22,6 +24,8 @@ __all__ = [
     "safe_xml_parser",
     "parse_xml_bytes",
     "element_path",
+    "cannot_write",
+    "existing",
 ]
 
 
@@ -30,11 +34,15 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     """Write to a temporary file beside ``path`` and rename it into place on success.
 
     On any exception the temporary file is removed and ``path`` is left as it was: a failed
-    run never leaves a partial output file.
+    run never leaves a partial output file. A file the system refuses to write (its folder is
+    a file, the name is too long, the path is a folder) is an :class:`ExportError` naming it.
     """
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    target = expect_path(path, "the file to write", error=ExportError)
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    except OSError as exc:
+        raise cannot_write(target, exc) from None
     try:
         encoding = None if "b" in mode else "utf-8"
         newline = None if "b" in mode else ""
@@ -43,10 +51,31 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
             handle.flush()
             os.fsync(handle.fileno())
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)
+        if isinstance(exc, OSError):
+            raise cannot_write(target, exc) from None
         raise
+
+
+def cannot_write(target: Path, exc: OSError) -> ExportError:
+    """The located error for a file or folder the system refused to make at ``target``."""
+    blocker = next((p for p in target.parents if _is_file(p)), None)
+    if isinstance(exc, (FileExistsError, NotADirectoryError)) and blocker is not None:
+        reason = f"{blocker} is a file, not a folder"
+    elif isinstance(exc, IsADirectoryError):
+        reason = "it is a folder"
+    else:
+        reason = exc.strerror or str(exc)
+    return ExportError(f"cannot write here: {reason}", file=str(target))
+
+
+def _is_file(path: Path) -> bool:
+    try:
+        return not stat.S_ISDIR(path.stat().st_mode)
+    except (OSError, ValueError):
+        return False
 
 
 def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
@@ -61,9 +90,12 @@ def atomic_write_text(path: str | os.PathLike[str], text: str) -> None:
 
 def safe_join(root: str | os.PathLike[str], *parts: str) -> Path:
     """Join ``parts`` under ``root`` and refuse any result outside it (``..``, absolute, links)."""
-    base = Path(root).resolve()
-    candidate = base.joinpath(*parts)
-    resolved = candidate.resolve()
+    try:
+        base = Path(root).resolve()
+        candidate = base.joinpath(*parts)
+        resolved = candidate.resolve()
+    except (OSError, ValueError) as exc:
+        raise ExportError(f"cannot write {'/'.join(parts)!r} under {str(root)!r}: {exc}") from None
     if resolved != base and base not in resolved.parents:
         raise ExportError(
             f"refusing to write {'/'.join(parts)!r}: it would land outside the output directory {str(root)!r}"
@@ -134,3 +166,16 @@ def parse_xml_bytes(
                 Location(file=filename, line=1),
             )
     return tree
+
+
+def existing(path: str | os.PathLike[str], error: type[RosaadlError] = UsageError) -> bool:
+    """Whether ``path`` names something that exists; a path the system cannot look up at all
+    (a name too long, a NUL byte, a loop of links) is an ``error`` naming it."""
+    target = expect_path(path)
+    try:
+        target.stat()
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except OSError as exc:
+        raise error(f"cannot use this path: {exc.strerror or exc}", file=str(target)) from None
+    return True

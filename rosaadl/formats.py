@@ -13,6 +13,7 @@ plus one entry in :func:`readers` or :func:`writers`; the modules are imported o
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,7 +21,9 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.arguments import checked, expect_path
 from rosaadl.errors import Diagnostic, RosaadlError, UsageError
+from rosaadl.fileio import existing
 
 __all__ = [
     "Loaded",
@@ -151,7 +154,9 @@ def readers() -> tuple[Reader, ...]:
     )
 
 
-def reader_for(path: Path) -> Reader:
+def reader_for(path: str | os.PathLike[str]) -> Reader:
+    """The reader for ``path``: by its suffix, or for a folder, by what the folder holds."""
+    path = expect_path(path)
     if path.is_dir():
         for reader in readers():
             if reader.folder is not None and reader.folder(path):
@@ -167,9 +172,11 @@ def reader_for(path: Path) -> Reader:
     )
 
 
-def read_input(path: Path, **options: Any) -> Loaded:
+@checked
+def read_input(path: str | os.PathLike[str], **options: Any) -> Loaded:
     """Read one input with the reader its name or content calls for."""
-    if not path.exists():
+    path = expect_path(path)
+    if not existing(path):
         raise UsageError("no such file or folder", file=str(path))
     return reader_for(path).read(path, **options)
 
@@ -189,7 +196,9 @@ def expand_errors(exc: RosaadlError) -> list[RosaadlError | Diagnostic]:
     return list(exc.errors) or [exc]
 
 
-def check_file(path: Path, **options: Any) -> tuple[list[RosaadlError | Diagnostic], list[Diagnostic]]:
+def check_file(
+    path: str | os.PathLike[str], **options: Any
+) -> tuple[list[RosaadlError | Diagnostic], list[Diagnostic]]:
     """Read one input; returns (errors, warnings) instead of raising for model problems."""
     try:
         loaded = read_input(path, **options)

@@ -31,8 +31,9 @@ from pyecore.resources.json import JsonResource
 from pyecore.resources.xmi import XMIResource
 
 from rosaadl import metamodels
+from rosaadl.arguments import checked, describe, expect_path
 from rosaadl.bulk import FastBuilder  # re-exported: bulk construction by feature name
-from rosaadl.errors import Location, ModelError, RosaadlError, ValidationError
+from rosaadl.errors import Location, ModelError, RosaadlError, UsageError, ValidationError
 from rosaadl.fileio import atomic_write_bytes
 
 __all__ = [
@@ -158,9 +159,7 @@ def _containments(eclass: EClass) -> tuple[tuple[str, bool], ...]:
     """(name, many) of the containment references of a class, in feature order (metadata only)."""
     # eAllStructuralFeatures, not eAllReferences: the latter is a set, whose order changes from run to run
     return tuple(
-        (f.name, bool(f.many))
-        for f in eclass.eAllStructuralFeatures()
-        if getattr(f, "containment", False)
+        (f.name, bool(f.many)) for f in eclass.eAllStructuralFeatures() if getattr(f, "containment", False)
     )
 
 
@@ -187,6 +186,8 @@ def parent(obj: EObject) -> EObject | None:
 
 def walk(obj: EObject) -> Iterator[EObject]:
     """``obj`` and everything it contains, depth first, in document order."""
+    if not isinstance(obj, EObject):
+        raise UsageError(f"walk(): obj must be EObject, not {describe(obj)}")
     stack = [obj]
     while stack:
         current = stack.pop()
@@ -311,6 +312,7 @@ def instance_path(obj: EObject) -> str:
     return ".".join(reversed(parts))
 
 
+@checked
 def find_instance(root: EObject, path: str) -> EObject:
     """The instance object at ``path`` (as made by :func:`instance_path`), or a located error.
 
@@ -401,6 +403,10 @@ class _HardenedXMIResource(XMIResource):
                 line=node.sourceline,
                 path=self._tree.getpath(node),
             ) from None
+
+    def _decode_eobject(self, current_node, parent_eobj):
+        # the attributes written as child elements are decoded here, outside _decode_node
+        return self._located(current_node, super()._decode_eobject, current_node, parent_eobj)
 
     def _decode_node(self, parent_eobj, node):
         return self._located(node, super()._decode_node, parent_eobj, node)
@@ -506,6 +512,8 @@ class _LocatedJsonResource(JsonResource):
             json_value = json.loads(text)
         except UnicodeDecodeError as exc:
             raise ValidationError(f"not UTF-8 text (byte {exc.start})", file=self._filename) from None
+        except RecursionError:
+            raise ValidationError("the JSON is nested too deeply", file=self._filename) from None
         except json.JSONDecodeError as exc:
             raise ValidationError(
                 f"malformed JSON: {exc.msg}", file=self._filename, line=exc.lineno, column=exc.colno
@@ -593,6 +601,7 @@ def _format_of(path: Path, fmt: str | None) -> str:
     raise ModelError(f"cannot tell the model format of {str(path)!r}: use a .xmi or .json file name")
 
 
+@checked
 def save(root: EObject, path: str | os.PathLike[str], fmt: str | None = None) -> Path:
     """Write a model as XMI or JSON (by extension), atomically."""
     target = Path(path)
@@ -602,9 +611,10 @@ def save(root: EObject, path: str | os.PathLike[str], fmt: str | None = None) ->
     return target
 
 
+@checked
 def load(path: str | os.PathLike[str], fmt: str | None = None) -> EObject:
     """Read a model written by :func:`save`; errors name the file and line."""
-    source = Path(path)
+    source = expect_path(path)
     kind = _format_of(source, fmt)
     try:
         data = source.read_bytes()

@@ -14,6 +14,7 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.arguments import checked
 from rosaadl.errors import Location, ModelError
 from rosaadl.units import Quantity
 
@@ -141,6 +142,7 @@ def own_property(obj: EObject, name: str, *, in_mode: str | None = None) -> Any:
     return python_value(_modal_value(assoc, in_mode))
 
 
+@checked
 def property_value(obj: EObject, name: str, default: Any = None, *, required: bool = False) -> Any:
     """Property value of an instance object (its resolved associations); ``required`` raises a
     located :class:`ModelError` naming the instance path when the property is missing."""

@@ -8,11 +8,13 @@ actually uses (:meth:`UnitSystem.add_units_type`).
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 
-from rosaadl.errors import ModelError
+from rosaadl.arguments import describe
+from rosaadl.errors import ModelError, UsageError
 
 __all__ = ["Quantity", "UnitSystem", "STANDARD_UNITS", "standard_units"]
 
@@ -168,7 +170,14 @@ class Quantity:
         """The value in ``unit`` (same units type), exactly for integers where possible."""
         if self.unit is None:
             raise ModelError(f"{self.value} has no unit; cannot convert to {unit}")
-        return (system or _STANDARD).convert(self.value, self.unit, unit)
+        if not isinstance(unit, str):
+            raise UsageError(f"Quantity.to(): unit must be str, not {describe(unit)}")
+        try:
+            return (system or _STANDARD).convert(self.value, self.unit, unit)
+        except (TypeError, AttributeError):
+            if isinstance(self.value, numbers.Real) and isinstance(self.unit, str):
+                raise
+            raise ModelError(f"{self!r} is not a number with a unit literal; cannot convert it") from None
 
     def __str__(self) -> str:
         return f"{self.value} {self.unit}" if self.unit else str(self.value)

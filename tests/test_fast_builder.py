@@ -125,7 +125,7 @@ def test_fast_objects_read_pyecore_s_own_state_and_keep_it_per_object() -> None:
     fi.delete()
     assert fi.eContainer() is None and not si.featureInstances
     assert si.connectionInstances[0].source is None
-    with pytest.raises(TypeError, match="not a class made from an EClass"):
+    with pytest.raises(ModelError, match="not a class made from an EClass"):
         FastFactory.new(EPackage)
 
 
@@ -365,7 +365,7 @@ def test_a_prepared_class_makes_with_object_new_what_fast_new_makes() -> None:
         assert obj.name is None and not obj.eIsSet("name")
         obj.name = "m"
         assert obj.eIsSet("name") and [f.name for f in obj._isset] == ["name"]
-    with pytest.raises(TypeError, match="not a class made from an EClass"):
+    with pytest.raises(ModelError, match="not a class made from an EClass"):
         FastFactory.prepare(EPackage)
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 from pyecore.ecore import EObject
 
 from rosaadl import fileio
+from rosaadl.arguments import checked
 from rosaadl.errors import ExportError, Location
 from rosaadl.exporters.aadl_text.context import UnitContext
 from rosaadl.exporters.aadl_text.lexical import unit_file_name
@@ -62,6 +63,7 @@ def write_units(units: Iterable[EObject]) -> dict[str, str]:
     return out
 
 
+@checked
 def write_model(model: EObject | Iterable[EObject], out_dir: str | os.PathLike[str]) -> list[Path]:
     """Write every unit of an ``AadlModel`` (or the given units) as ``<unit>.aadl`` into ``out_dir``.
 

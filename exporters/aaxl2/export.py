@@ -15,6 +15,7 @@ from pathlib import Path
 
 from pyecore.ecore import EObject
 
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, ExportError, Location
 from rosaadl.fileio import atomic_write_bytes, atomic_write_text, safe_join
 from rosaadl.model import is_a
@@ -120,6 +121,7 @@ def instance_file_name(instance: EObject) -> str:
     return f"{stem}.aaxl2"
 
 
+@checked
 def export_aaxl2(subject: EObject, *, root: str | None = None) -> Aaxl2Export:
     """An instance as an OSATE ``.aaxl2`` document and its ``.aadl`` sidecars, in memory.
 
@@ -136,6 +138,7 @@ def export_aaxl2(subject: EObject, *, root: str | None = None) -> Aaxl2Export:
     return Aaxl2Export(file_name, data, sidecars, diagnostics, system)
 
 
+@checked
 def dumps_aaxl2(
     subject: EObject, *, root: str | None = None, warnings: list[Diagnostic] | None = None
 ) -> bytes:
@@ -147,6 +150,7 @@ def dumps_aaxl2(
     return result.data
 
 
+@checked
 def write_aaxl2(
     subject: EObject,
     out_dir: str | os.PathLike[str],

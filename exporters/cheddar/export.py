@@ -17,6 +17,7 @@ from lxml import etree
 from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.arguments import checked
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import Diagnostic, ExportError, Location, RosaadlError
 from rosaadl.exporters.cheddar import v2, v3
@@ -92,6 +93,7 @@ def _system_instance(source: EObject, root: str | None) -> EObject:
     )
 
 
+@checked
 def dumps_cheddar(
     source: EObject,
     *,
@@ -152,6 +154,7 @@ def _listed(problems: list[str]) -> str:
     return "\n  " + "\n  ".join(shown) + (f"\n  ... and {more} more" if more > 0 else "")
 
 
+@checked
 def write_cheddar(
     source: EObject,
     path: str | Path,

@@ -30,6 +30,7 @@ from pathlib import Path, PurePosixPath
 from pyecore.ecore import EObject
 
 from rosaadl import model as _model
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, GenerationError, Location, RosaadlError, UsageError
 from rosaadl.exporters.rclpy import naming, preservation
 from rosaadl.exporters.rclpy.deployment import Deployment, HostPlan, NodeInstance, find_feature
@@ -40,7 +41,7 @@ from rosaadl.exporters.rclpy.nodes import NodeBuilder, NodeClass
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.render import render_template
 from rosaadl.exporters.rclpy.topics import Topology
-from rosaadl.fileio import atomic_write_bytes, atomic_write_text, safe_join
+from rosaadl.fileio import atomic_write_bytes, atomic_write_text, existing, safe_join
 from rosaadl.properties import own_property
 
 __all__ = [
@@ -272,6 +273,7 @@ def _module_base(process: EObject) -> str:
     return process.name or "node"
 
 
+@checked
 def plan_workspace(
     source: EObject,
     *,
@@ -721,6 +723,7 @@ def _keep_year(old: str | None, new: str) -> str:
     return _COPYRIGHT_RE.sub(lambda m: m.group(1) + found.group(2) + m.group(3), new, count=1)
 
 
+@checked
 def generate_workspace(
     source: EObject,
     output: str | os.PathLike[str],
@@ -743,7 +746,7 @@ def generate_workspace(
     """
     plan = plan_workspace(source, root=root, options=options, rosmod_trace=rosmod_trace)
     out = Path(output)
-    if out.exists() and not out.is_dir():
+    if existing(out, GenerationError) and not out.is_dir():
         raise GenerationError("the output is not a directory", file=str(out))
     result = GenerationResult(output=out, plan=plan, dry_run=dry_run, diagnostics=list(plan.diagnostics))
     previous_keys, previous_files = _load_manifest(out, result) if out.is_dir() else ({}, [])

@@ -451,10 +451,10 @@ def write_report(
     much of it as :data:`~rosaadl.exporters.report.view.MAX_GANTT_JOBS` jobs allow). Both files
     are rendered before either is written, and each is written atomically.
     """
-    from rosaadl.fileio import atomic_write_text, safe_join
+    from rosaadl.fileio import atomic_write_text, existing, safe_join
 
     folder = Path(out_dir)
-    if folder.exists() and not folder.is_dir():
+    if existing(folder, ExportError) and not folder.is_dir():
         raise ExportError(f"cannot write the report into {str(folder)!r}: it is a file, not a folder")
     html, data = render_report(instance, report, simulation=simulation, title=title)
     try:

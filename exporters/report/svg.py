@@ -17,9 +17,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from fractions import Fraction
 from typing import Any
 
 from markupsafe import escape
+
+from rosaadl.analysis.rendering import as_float
 
 __all__ = [
     "FONT",
@@ -374,6 +377,12 @@ def _axis_percent(
     svg.text(x, y_bottom + 17, "capacity", 11, anchor="middle", fill=_INK, bold=True)
 
 
+def _percent_of(part: float, whole: float) -> float:
+    """``100 * part / whole``, exactly and saturating: the view's numbers may be integers beyond
+    the float range (a capacity of 1e308 GByte/s in KByte/s)."""
+    return as_float(100 * Fraction(part) / Fraction(whole))
+
+
 def bus_chart(rows: list[dict[str, Any]]) -> str:
     """Per-bus load bars: actual bandwidth against capacity (100 %), with the budget and the
     required budget (sum of what is bound) as markers."""
@@ -384,7 +393,7 @@ def bus_chart(rows: list[dict[str, Any]]) -> str:
     for r in rows:
         cap = r["capacity_kbps"] or 0
         if cap > 0:
-            loads += [100 * (r["budget_kbps"] or 0) / cap, 100 * (r["required_kbps"] or 0) / cap]
+            loads += [_percent_of(r["budget_kbps"] or 0, cap), _percent_of(r["required_kbps"] or 0, cap)]
     axis_max, step = _percent_scale(loads)
     left, right = 200.0, 250.0
     x0, x1 = left, _WIDTH - right
@@ -415,7 +424,7 @@ def bus_chart(rows: list[dict[str, Any]]) -> str:
                 x0 + 8, y + bar_h / 2 + 4, f"no bandwidth capacity; actual {_rate(actual)}", 11.5, fill=_MUTED
             )
             continue
-        load = 100 * actual / cap
+        load = _percent_of(actual, cap)
         colour = "#4e79a7" if not r["virtual"] else "#76b7b2"
         svg.rect(
             x0, y, min(load, 100) * scale, bar_h, fill=colour, tip=f"actual {_rate(actual)} ({load:.2f} %)"
@@ -436,7 +445,7 @@ def bus_chart(rows: list[dict[str, Any]]) -> str:
         ):
             v = r[key] or 0
             if v > 0:
-                mx = x0 + min(100 * v / cap, axis_max) * scale
+                mx = x0 + min(_percent_of(v, cap), axis_max) * scale
                 svg.line(mx, y - 4, mx, y + bar_h + 4, stroke=mark, stroke_width=3, tip=f"{name} {_rate(v)}")
         text_colour = STATUS["error"] if r["overloaded"] else _INK
         value = f"{load:.1f} %"

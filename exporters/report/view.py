@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from rosaadl.analysis.rendering import short_path
+from rosaadl.analysis.rendering import as_float, short_path
 from rosaadl.errors import Diagnostic, RosaadlError
 from rosaadl.model import component_instances
 
@@ -73,7 +73,9 @@ def number(value: Any) -> int | float | None:
     if isinstance(value, int):
         return value
     if isinstance(value, Fraction):
-        return value.numerator if value.denominator == 1 else float(value)
+        if value.denominator == 1:
+            return value.numerator
+        value = as_float(value)  # beyond the float range: an infinity, shown as no number
     if isinstance(value, float):
         return value if math.isfinite(value) else None
     return None

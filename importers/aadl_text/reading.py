@@ -18,6 +18,7 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.arguments import checked, expect_path
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import (
     AadlSyntaxError,
@@ -28,6 +29,7 @@ from rosaadl.errors import (
     RosaadlError,
     ValidationError,
 )
+from rosaadl.fileio import existing
 from rosaadl.importers.aadl_syntax import parse
 from rosaadl.importers.aadl_text.checks import check_names_and_values
 from rosaadl.importers.aadl_text.factory import add, make
@@ -142,13 +144,10 @@ def _expand(paths: Iterable[str | os.PathLike[str]], seen: set[Path]) -> list[Pa
     paths) are left out, so that a file named twice is read once."""
     out: list[Path] = []
     for item in paths:
-        path = Path(item)
-        if path.is_dir():
-            found = _aadl_files_under(path)
-        elif path.exists():
-            found = [path]
-        else:
+        path = expect_path(item, "an AADL file or folder")
+        if not existing(path, ParseError):
             raise ParseError("no such file or folder", file=str(path))
+        found = _aadl_files_under(path) if path.is_dir() else [path]
         for file in found:
             key = file.resolve()
             if key not in seen:
@@ -164,6 +163,7 @@ def _read_bytes(path: Path) -> bytes:
         raise ParseError(f"cannot read the file: {exc.strerror or exc}", file=str(path)) from None
 
 
+@checked
 def read_files(
     paths: str | os.PathLike[str] | Iterable[str | os.PathLike[str]],
     *,

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import logging
 import os
-from pathlib import Path
 
 from lxml import etree
 
+from rosaadl.arguments import checked, expect_path
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import ImportFormatError, Location
 from rosaadl.fileio import parse_xml_bytes
@@ -35,6 +35,7 @@ log = logging.getLogger(__package__)
 DEFAULT_MAX_BYTES = 512 * 1024 * 1024
 
 
+@checked
 def read_aaxl2(
     path: str | os.PathLike[str], *, strict: bool = False, max_bytes: int = DEFAULT_MAX_BYTES
 ) -> ImportResult:
@@ -43,7 +44,7 @@ def read_aaxl2(
     ``strict`` turns unknown elements (otherwise skipped with a warning) into errors;
     ``max_bytes`` refuses larger files before reading them.
     """
-    source = Path(path)
+    source = expect_path(path)
     filename = str(path)
     try:
         size = source.stat().st_size
@@ -60,6 +61,7 @@ def read_aaxl2(
     return loads_aaxl2(data, filename, strict=strict, max_bytes=max_bytes)
 
 
+@checked
 def loads_aaxl2(
     data: bytes, filename: str = "<aaxl2>", *, strict: bool = False, max_bytes: int = DEFAULT_MAX_BYTES
 ) -> ImportResult:

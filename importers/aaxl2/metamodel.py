@@ -16,7 +16,7 @@ from pyecore.ecore import EClass, EEnum
 
 from rosaadl import metamodels
 from rosaadl.bulk import FastFactory, FeatureSlot
-from rosaadl.errors import RosaadlError
+from rosaadl.errors import ModelError, RosaadlError
 
 __all__ = ["MetamodelFacts", "metamodel_facts"]
 
@@ -127,7 +127,7 @@ def metamodel_facts() -> MetamodelFacts:
         for name in names:
             try:
                 f[f"{cname}.{name}"] = factory.slot(ec, name)
-            except KeyError:
+            except ModelError:
                 raise RosaadlError(f"metamodel class {cname} lacks feature {name}") from None
     literals = {}
     for enum in enums.values():

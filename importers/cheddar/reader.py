@@ -16,6 +16,7 @@ from lxml import etree
 from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.arguments import checked, expect_path
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import Diagnostic, ImportFormatError, RosaadlError
 from rosaadl.fileio import parse_xml_bytes
@@ -105,6 +106,7 @@ def _keep_section(state: ReadState, section: etree._Element) -> None:
         state.kept.append((name, canonical_xml(item)))
 
 
+@checked
 def loads_cheddar(
     data: bytes | str,
     filename: str = "<cheddar>",
@@ -133,6 +135,7 @@ def loads_cheddar(
         raise ImportFormatError("the document is nested too deeply", file=filename) from None
 
 
+@checked
 def load_cheddar(
     path: str | Path,
     *,
@@ -141,7 +144,7 @@ def load_cheddar(
     diagnostics: list[Diagnostic] | None = None,
 ) -> EObject:
     """Read a Cheddar file (``.xmlv3`` / ``.xml``); see :func:`loads_cheddar`."""
-    source = Path(path)
+    source = expect_path(path)
     try:
         data = source.read_bytes()
     except OSError as exc:

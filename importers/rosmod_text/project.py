@@ -18,7 +18,9 @@ from pathlib import Path
 
 from pyecore.ecore import EObject
 
+from rosaadl.arguments import checked, expect_path
 from rosaadl.errors import Diagnostic, ParseError
+from rosaadl.fileio import existing
 from rosaadl.importers.rosmod_text import v01, v02, v03, v04
 from rosaadl.importers.rosmod_text.blocks import Stmt, at, parse_blocks
 from rosaadl.importers.rosmod_text.context import ImportContext, RosmodImportError
@@ -46,10 +48,13 @@ _PACKAGE_READERS = {"0.1": v01.package, "0.2": v02.package, "0.3": v03.package}
 
 def is_rosmod_project(path: str | os.PathLike[str]) -> bool:
     """True for a folder that holds a ROSMOD textual project (marker, standard folders or model files)."""
-    root = Path(path)
-    if root.is_file():
-        return root.suffix.lower() in _SOFTWARE_SUFFIXES
-    if not root.is_dir():
+    root = expect_path(path)
+    try:
+        if root.is_file():
+            return root.suffix.lower() in _SOFTWARE_SUFFIXES
+        if not root.is_dir():
+            return False
+    except OSError:  # a name the system cannot look up (too long): not a project
         return False
     if any(p.suffix == ".rosmod" for p in root.iterdir() if p.is_file()):
         return True
@@ -62,11 +67,13 @@ def read_software_file(
     path: str | os.PathLike[str], *, warnings: list[Diagnostic] | None = None, strict: bool = False
 ) -> EObject:
     """A project holding the software of one ``.rml`` (any version) or ``.rosml`` file."""
-    if not Path(path).is_file():
+    source = expect_path(path)
+    if not _Layout.exists(source, os.fspath(path)) or not source.is_file():
         raise RosmodImportError([ParseError("expected a .rml or .rosml file", file=os.fspath(path))])
     return read_project(path, warnings=warnings, strict=strict)
 
 
+@checked
 def read_project(
     path: str | os.PathLike[str], *, warnings: list[Diagnostic] | None = None, strict: bool = False
 ) -> EObject:
@@ -162,10 +169,18 @@ class _Layout:
     hw_files: list[Path]
     dp_files: list[Path]
 
+    @staticmethod
+    def exists(root: Path, given: str) -> bool:
+        """Whether ``root`` exists; a path the system cannot look up is a located error."""
+        try:
+            return existing(root, ParseError)
+        except ParseError as exc:
+            raise RosmodImportError([exc]) from None
+
     @classmethod
     def of(cls, given: str) -> _Layout:
-        root = Path(given)
-        if not root.exists():
+        root = expect_path(given)
+        if not cls.exists(root, given):
             raise RosmodImportError([ParseError("no such file or folder", file=given)])
         if root.is_file():
             return cls(given, root, root.parent, os.path.dirname(given), root.stem, [root], [], [])

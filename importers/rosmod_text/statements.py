@@ -79,16 +79,28 @@ def integer(stmt: Stmt, filename: str, ctx: ImportContext) -> int:
         return int(text)
     except ValueError:
         pass
-    try:
-        number = Decimal(text)
-    except InvalidOperation:
-        number = None
-    if number is not None and number == number.to_integral_value():
+    number = whole_decimal(text)
+    if number is not None:
         ctx.warn(
             f"{stmt.key} = {text}: read as the integer {int(number)}", filename, token.line, token.column
         )
         return int(number)
     raise ParseError(f"{stmt.key} = {text!r}: expected an integer", location=at(filename, token))
+
+
+#: The integers a ROSMOD model holds are 64-bit, as AADL's (a larger number is not read).
+MAX_INTEGER = 2**63 - 1
+
+
+def whole_decimal(text: str) -> Decimal | None:
+    """``text`` as a decimal that is a whole number of at most 64 bits (``50.0``, ``5e1``), else None."""
+    try:
+        number = Decimal(text)
+    except InvalidOperation:
+        return None
+    if not number.is_finite() or number.adjusted() > 18 or abs(number) > MAX_INTEGER:
+        return None
+    return number if number == number.to_integral_value() else None
 
 
 @functools.cache

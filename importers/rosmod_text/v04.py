@@ -23,7 +23,13 @@ from rosaadl import model
 from rosaadl.errors import NameResolutionError, ParseError
 from rosaadl.importers import ros_msg
 from rosaadl.importers.rosmod_text.context import ImportContext
-from rosaadl.importers.rosmod_text.statements import SCHEMES, new, new_property, scheme_literal
+from rosaadl.importers.rosmod_text.statements import (
+    MAX_INTEGER,
+    SCHEMES,
+    new,
+    new_property,
+    scheme_literal,
+)
 
 __all__ = ["looks_like_json", "read_v04"]
 
@@ -181,12 +187,15 @@ class _Reader:
         if value in (None, ""):
             return None
         try:
-            return int(Decimal(str(value)))
-        except (InvalidOperation, ValueError):
-            self.ctx.error(
-                ParseError(f"{where}: expected an integer, found {value!r}", file=self.shown, path=where)
-            )
-            return None
+            number = Decimal(str(value))
+        except InvalidOperation:
+            number = None
+        if number is not None and number.is_finite() and abs(number) <= MAX_INTEGER:
+            return int(number)
+        self.ctx.error(
+            ParseError(f"{where}: expected an integer, found {value!r}", file=self.shown, path=where)
+        )
+        return None
 
     # -- elements
     def project(self, data: dict, project: EObject) -> None:

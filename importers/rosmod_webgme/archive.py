@@ -15,6 +15,7 @@ import zlib
 from pathlib import PurePosixPath
 from typing import Any
 
+from rosaadl.arguments import expect_path
 from rosaadl.errors import ImportFormatError, Location
 
 __all__ = ["MAX_TOTAL_BYTES", "MAX_MEMBERS", "load_project_json", "fail"]
@@ -54,6 +55,7 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     :data:`MAX_MEMBERS` members or more than :data:`MAX_TOTAL_BYTES` uncompressed bytes,
     encrypted members, a missing or malformed ``project.json``.
     """
+    expect_path(path)
     filename = os.fspath(path)
     try:
         if not zipfile.is_zipfile(filename):

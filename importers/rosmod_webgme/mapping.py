@@ -21,7 +21,7 @@ from pyecore.ecore import EObject
 from rosaadl import model
 from rosaadl.errors import ImportFormatError, Location, RosaadlError
 from rosaadl.importers.rosmod_text.context import ImportContext
-from rosaadl.importers.rosmod_text.statements import SCHEMES, scheme_literal
+from rosaadl.importers.rosmod_text.statements import MAX_INTEGER, SCHEMES, scheme_literal
 from rosaadl.importers.rosmod_webgme.tree import Node, Tree
 
 __all__ = ["SKIPPED_KINDS", "Mapper", "text", "type_name"]
@@ -147,7 +147,7 @@ class Mapper:
             return None
         try:
             number = _decimal(value)
-            if number.is_finite() and number == number.to_integral_value():
+            if number.is_finite() and abs(number) <= MAX_INTEGER and number == number.to_integral_value():
                 return int(number)
         except InvalidOperation:
             pass

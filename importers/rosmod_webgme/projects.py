@@ -14,6 +14,7 @@ import os
 from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, ImportFormatError, Location, NameResolutionError, RosaadlError
 from rosaadl.importers.rosmod_text.context import ImportContext, RosmodImportError
 from rosaadl.importers.rosmod_webgme import deployments, software, systems
@@ -39,6 +40,7 @@ def project_names(path: str | os.PathLike[str]) -> list[str]:
     return [n.name for n in _project_nodes(tree)]
 
 
+@checked
 def read_webgmex(
     path: str | os.PathLike[str],
     *,

@@ -40,6 +40,7 @@ import click
 
 from rosaadl.cli.common import EXIT_ERRORS, EXIT_OK, Options, Report, pass_options
 from rosaadl.errors import Diagnostic, Location, RosaadlError, UsageError
+from rosaadl.fileio import existing
 
 __all__ = ["command", "run_demo", "DemoRun", "STAGES", "BINDINGS_FILE", "example_project"]
 
@@ -531,7 +532,7 @@ def command(options: Options, out: Path, project_dir: Path | None, bindings: Pat
     from rosaadl.importers.rosmod_text import is_rosmod_project
 
     project = project_dir if project_dir is not None else example_project()
-    if not project.exists():
+    if not existing(project):
         raise UsageError(f"no ROSMOD project folder at {project}")
     if not project.is_dir() or not is_rosmod_project(project):
         raise UsageError(
@@ -540,7 +541,7 @@ def command(options: Options, out: Path, project_dir: Path | None, bindings: Pat
     bindings_file = bindings if bindings is not None else project / BINDINGS_FILE
     if not bindings_file.is_file():
         raise UsageError(f"no bindings file at {bindings_file} (give one with --bindings)")
-    if out.exists() and not out.is_dir():
+    if existing(out) and not out.is_dir():
         raise UsageError(f"the output {out} is a file, not a folder")
     run = run_demo(project, out, bindings=bindings_file, progress=options.progress, debug=options.debug)
     report = Report()

@@ -18,6 +18,7 @@ from rosaadl.cli.common import (
 )
 from rosaadl.cli.inputs import Inputs, choose_instance, read_aadl_inputs
 from rosaadl.errors import Diagnostic, UsageError
+from rosaadl.fileio import existing
 
 __all__ = ["command"]
 
@@ -81,7 +82,7 @@ def generate_rclpy(
     from rosaadl.formats import reader_for
 
     for path in inputs:
-        if not path.exists():
+        if not existing(path):
             raise UsageError("no such file or folder", file=str(path))
     rosmod_trace = None
     if len(inputs) == 1 and reader_for(inputs[0]).name in ("rosmod", "webgme"):

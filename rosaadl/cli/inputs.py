@@ -14,6 +14,7 @@ from pathlib import Path
 from pyecore.ecore import EObject
 
 from rosaadl.errors import Diagnostic, UsageError
+from rosaadl.fileio import existing
 from rosaadl.formats import read_input, reader_for
 
 __all__ = ["Inputs", "read_aadl_inputs", "choose_instance"]
@@ -34,7 +35,7 @@ def read_aadl_inputs(paths: Sequence[Path], *, strict: bool = False, time_unit: 
     if not paths:
         raise UsageError("no input given")
     for path in paths:
-        if not path.exists():
+        if not existing(path):
             raise UsageError("no such file or folder", file=str(path))
     text = [p for p in paths if p.is_dir() or p.suffix.lower() in _AADL_SUFFIXES]
     others = [p for p in paths if p not in text]

@@ -23,6 +23,7 @@ from pyecore.ecore import EObject
 from rosaadl import model as _model
 from rosaadl.analysis.deployment import DeploymentResult, search_deployment
 from rosaadl.analysis.instance_values import PropertyReader
+from rosaadl.arguments import checked, expect_path
 from rosaadl.errors import ParseError
 from rosaadl.exporters.aadl_text import write_model, write_unit
 from rosaadl.importers.aadl_text import read_files, read_string
@@ -45,10 +46,11 @@ __all__ = ["Proposal", "bind_project", "propose_binding", "read_bindings", "writ
 log = logging.getLogger(__name__)
 
 
+@checked
 def read_bindings(path: str | os.PathLike[str]) -> BindingsFile:
     """Read a bindings file (:func:`~rosaadl.transforms.bind.parse_bindings`); a missing or
     unreadable file is a located :class:`~rosaadl.errors.ParseError`."""
-    source = Path(path)
+    source = expect_path(path)
     try:
         size = source.stat().st_size
         if size > MAX_BINDINGS_BYTES:
@@ -59,6 +61,7 @@ def read_bindings(path: str | os.PathLike[str]) -> BindingsFile:
     return parse_bindings(data, str(source))
 
 
+@checked
 def bind_project(
     project: EObject, bindings: BindingsFile, library: EObject | None = None
 ) -> dict[str, BoundDeployment]:
@@ -178,6 +181,7 @@ def _demands(
     }
 
 
+@checked
 def propose_binding(
     project: EObject,
     bound: BoundDeployment,

@@ -21,6 +21,7 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import fileio, model
+from rosaadl.arguments import checked, expect_path
 from rosaadl.errors import Diagnostic, ExportError, ParseError, RosaadlError
 from rosaadl.exporters.aadl_text import unit_file_name, write_units
 from rosaadl.importers.aadl_text import read_string
@@ -114,6 +115,7 @@ def _existing_outputs(
     return found, errors
 
 
+@checked
 def add_profiles(
     measurements: str | os.PathLike[str],
     out_dir: str | os.PathLike[str],
@@ -127,15 +129,15 @@ def add_profiles(
     library). Raises :class:`MeasurementError` listing every problem of the file (nothing is
     written then); reader errors of the inputs propagate as they are.
     """
-    csv_path = Path(measurements)
-    target_dir = Path(out_dir)
+    csv_path = expect_path(measurements, "measurements")
+    target_dir = expect_path(out_dir, "out_dir")
     try:
         with csv_path.open("rb") as handle:  # no more than the limit is read, whatever the file
             data = handle.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise ParseError(f"cannot read the measurements: {exc.strerror or exc}", file=str(csv_path)) from None
     rows, errors, notes = parse_measurements(data, str(csv_path))
-    if target_dir.exists() and not target_dir.is_dir():
+    if fileio.existing(target_dir, ExportError) and not target_dir.is_dir():
         errors.append(MeasurementError("the output exists and is not a folder", file=str(target_dir)))
     notes_all: list[Diagnostic] = list(notes)
     read_notes: list[Diagnostic] = []

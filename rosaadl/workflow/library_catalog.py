@@ -25,6 +25,7 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, NameResolutionError
 from rosaadl.exporters.aadl_text.lexical import literal
 from rosaadl.importers.aadl_text import read_files
@@ -63,6 +64,7 @@ def display_file(source: str | None, root: Path | None = None) -> tuple[str | No
     return relative.as_posix(), True
 
 
+@checked
 def read_library(
     inputs: Iterable[str | os.PathLike[str]] = (), *, warnings: list[Diagnostic] | None = None
 ) -> EObject:
@@ -132,6 +134,7 @@ def _summary(resolver: Resolver, classifier: EObject) -> ComponentSummary:
     return ComponentSummary(classifier.name or "", category, kind, extends)
 
 
+@checked
 def list_packages(workspace: EObject, resolver: Resolver | None = None) -> list[PackageSummary]:
     """Every package and property set of ``workspace``, sorted by name, with its components."""
     resolver = resolver or Resolver(workspace)
@@ -206,6 +209,7 @@ def _close(workspace: EObject, name: str, limit: int = 8) -> list[str]:
     return out[:limit]
 
 
+@checked
 def describe(workspace: EObject, name: str, resolver: Resolver | None = None) -> dict[str, Any]:
     """What ``name`` is, as a JSON-ready dictionary (``"what"``: ``package``, ``property set`` or
     ``classifier``). A package or property set of that name wins over unqualified classifiers

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from decimal import ROUND_HALF_EVEN, ROUND_HALF_UP, Decimal, InvalidOperation
 from typing import Any
 
-from rosaadl.errors import Diagnostic, Location, ParseError, RosaadlError
+from rosaadl.errors import Diagnostic, Location, ParseError, RosaadlError, UsageError
 
 __all__ = [
     "COLUMNS",
@@ -382,6 +382,8 @@ def _read_row(
 
 def file_error(errors: Sequence[RosaadlError], what: str = "problems") -> MeasurementError:
     """One error for a whole file: every problem, in file and line order, in ``errors``."""
+    if not errors:
+        raise UsageError("file_error(): errors must list one or more problems")
     errors = sorted(
         errors,
         key=lambda e: (e.location.file or "", e.location.line or 0, e.location.column or 0),

@@ -15,6 +15,7 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import model as _model
+from rosaadl.arguments import checked
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import Diagnostic, Location, NameResolutionError, UsageError
 from rosaadl.lookup import PropertyLookup
@@ -36,6 +37,7 @@ log = logging.getLogger("rosaadl.transforms.instantiate")
 COMPATIBILITY_MODES = ("current", "osate-2.0")
 
 
+@checked
 def instantiate(
     model: EObject,
     root: str,

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from pyecore.ecore import EObject
 
 from rosaadl import model
+from rosaadl.arguments import checked
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import RosaadlError, TransformationError
 from rosaadl.transforms import trace as tracing
@@ -82,6 +83,7 @@ def _withs(unit: EObject) -> list[str]:
     return sorted((n for n in names if n.lower() not in _PREDECLARED), key=str.lower)
 
 
+@checked
 def rosmod_to_aadl(
     project: EObject, *, trace: bool = True, reserved_units: Iterable[str] = ()
 ) -> ConversionResult:

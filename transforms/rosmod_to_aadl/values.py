@@ -44,14 +44,27 @@ _UNIT_SECONDS = {
 def seconds_to_time(seconds: Decimal | int | str) -> tuple[int, str, bool]:
     """``(value, unit, exact)``: the seconds as an integer AADL time in ``ms`` when that is
     exact, else ``us``, ``ns``, ``ps``; ``exact`` is False when even ``ps`` had to be rounded.
-    Anything but a finite number is a :class:`~rosaadl.errors.TransformationError`."""
+    Anything but a finite number, or a time no AADL integer (64 bits) holds, is a
+    :class:`~rosaadl.errors.TransformationError`."""
     value = _decimal(seconds)
+    if value.adjusted() > 18:  # more than 10**19 s: checked before scaling (a huge exponent)
+        raise TransformationError(f"{seconds} s is too long for an AADL time (a 64-bit integer)")
     scaled = value
     for unit, scale in _TIME_SCALES:
         scaled = value * scale
         if scaled == scaled.to_integral_value():
-            return int(scaled), unit, True
-    return int(scaled.to_integral_value(ROUND_HALF_EVEN)), "ps", False
+            return _integer(scaled, unit, seconds), unit, True
+    return _integer(scaled.to_integral_value(ROUND_HALF_EVEN), "ps", seconds), "ps", False
+
+
+#: The largest AADL integer (AADL integers are 64-bit: the AADL reader refuses larger ones).
+_MAX_INTEGER = 2**63 - 1
+
+
+def _integer(scaled: Decimal, unit: str, seconds: object) -> int:
+    if abs(scaled) > _MAX_INTEGER:
+        raise TransformationError(f"{seconds} s in {unit} is too large for an AADL integer (64 bits)")
+    return int(scaled)
 
 
 def plain_seconds(value: Decimal | int | str) -> Decimal:
