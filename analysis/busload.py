@@ -43,7 +43,7 @@ from rosaadl.analysis.instance_values import (
 )
 from rosaadl.analysis.registry import Analysis, register
 from rosaadl.analysis.rendering import as_float, short_path, table
-from rosaadl.errors import Diagnostic, Location
+from rosaadl.errors import AnalysisError, Diagnostic, Location
 
 __all__ = [
     "java_double",
@@ -284,7 +284,8 @@ class BusLoadResult:
                 for found in bus.walk():
                     if found.path == path:
                         return found
-        raise KeyError(path)
+        where = f" in mode {mode!r}" if mode else ""
+        raise AnalysisError(f"no bus or virtual bus {path!r}{where}", path=path)
 
     def as_dict(self) -> dict[str, Any]:
         buses = []

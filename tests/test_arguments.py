@@ -34,6 +34,7 @@ from rosaadl.importers.cheddar import load_cheddar, loads_cheddar
 from rosaadl.importers.rosmod_text import read_project
 from rosaadl.importers.rosmod_webgme import read_webgmex
 from rosaadl.properties import property_value
+from rosaadl.transforms.aadl_to_rosmod import aadl_to_rosmod
 from rosaadl.transforms.instantiate import instantiate
 from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
 from rosaadl.units import Quantity
@@ -141,6 +142,8 @@ ENTRY_POINTS = [
     ("property_value(None, 'Period')", lambda p: property_value(None, "Period")),
     ("rosmod_to_aadl(None)", lambda p: rosmod_to_aadl(None)),
     ("rosmod_to_aadl(model)", lambda p: rosmod_to_aadl(read_files([]))),
+    ("aadl_to_rosmod(None)", lambda p: aadl_to_rosmod(None)),
+    ("aadl_to_rosmod(project)", lambda p: aadl_to_rosmod(p)),
     ("bind_project(None, None)", lambda p: bind_project(None, None)),
     ("write_model(None, out)", lambda p: write_model(None, "out")),
     ("write_project(None, out)", lambda p: write_project(None, "out")),

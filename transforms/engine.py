@@ -221,7 +221,7 @@ class Transformation:
         def decorate(fn: Callable[..., Any]) -> Rule:
             rule_name = name or fn.__name__
             if rule_name in self._by_name:
-                raise ValueError(f"transformation {self.name}: rule {rule_name!r} is declared twice")
+                raise TransformationError(f"transformation {self.name}: rule {rule_name!r} is declared twice")
             created = Rule(name=rule_name, source=eclass, create=fn, when=when, where=where, lazy=lazy)
             self._rules.append(created)
             self._by_name[rule_name] = created

@@ -23,6 +23,7 @@ from instance_builders import component, num, pa, ref
 from rosaadl import model
 from rosaadl.analysis.busload import analyze_bus_load, java_double, message_rate, port_loads
 from rosaadl.analysis.instance_values import PropertyReader
+from rosaadl.errors import AnalysisError
 
 new = model.new
 
@@ -358,6 +359,8 @@ def test_overheads_accumulate_through_nested_virtual_buses():
     assert [b.overhead_bytes for b in the_bus.walk()] == [8, 24, 48, 80]
     # (8 bytes + overhead) x 1000 messages/s, in KB/s
     assert [c.actual_kbps for b in the_bus.walk() for c in b.connections] == [16, 32, 56, 88]
+    with pytest.raises(AnalysisError, match="no bus or virtual bus 'top_i_Instance.nothing'"):
+        result.bus("top_i_Instance.nothing")
     assert the_bus.actual_kbps == 192 and the_bus.required_kbps == 404  # 20 + VB1's budget 384
     assert result.ok
 

@@ -298,7 +298,7 @@ def test_duplicate_rule_names_are_refused() -> None:
     def r(ctx, s):
         pass
 
-    with pytest.raises(ValueError, match="declared twice"):
+    with pytest.raises(TransformationError, match="declared twice"):
 
         @t.rule("rosmod.Timer", name="r")
         def other(ctx, s):

@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 from pyecore.ecore import EObject
 
 from rosaadl import model as _model
+from rosaadl.arguments import checked
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import Diagnostic, TransformationError
 from rosaadl.transforms import trace as tracing
@@ -71,6 +72,7 @@ class RosmodConversion:
     warnings: list[Diagnostic] = field(default_factory=list)  #: what could not be mapped, located
 
 
+@checked
 def aadl_to_rosmod(
     model: EObject,
     *,
@@ -91,6 +93,7 @@ def aadl_to_rosmod(
     return result.project
 
 
+@checked
 def aadl_to_rosmod_traced(
     model: EObject,
     *,
