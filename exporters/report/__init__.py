@@ -3,8 +3,10 @@
 ``write_report(instance, report, out_dir)`` writes ``report.html`` (findings, architecture
 diagram, CPU and bus load bars, Gantt chart of the simulated schedule, tables; inline CSS and
 SVG, no network, no JavaScript) and ``report.json`` (the same data). See
-:mod:`rosaadl.exporters.report.html`, :mod:`~rosaadl.exporters.report.view` (the data) and
-:mod:`~rosaadl.exporters.report.svg` (the charts, and why they are hand-written SVG).
+:mod:`rosaadl.exporters.report.html`, :mod:`~rosaadl.exporters.report.view` (the data),
+:mod:`~rosaadl.exporters.report.svg` (the charts), :mod:`~rosaadl.exporters.report.architecture`
+(the architecture diagram) and :mod:`~rosaadl.exporters.report.canvas` (the drawing kit, and
+why it is hand-written SVG).
 """
 
 from __future__ import annotations
