@@ -329,8 +329,12 @@ def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
 def _breakdown(path: Path) -> dict[str, float]:
     """Where our time goes on one file: parse, build, resolve, decode, and the collection of the
     young objects once the garbage collector is enabled again (best of 3, CPU time)."""
+    from rosaadl.bulk import gc_paused
     from rosaadl.fileio import parse_xml_bytes
-    from rosaadl.importers import aaxl2
+    from rosaadl.importers.aaxl2.document import Reader
+    from rosaadl.importers.aaxl2.instances import read_instance_roots
+    from rosaadl.importers.aaxl2.literals import decode_literals
+    from rosaadl.importers.aaxl2.references import resolve_pending
 
     data = path.read_bytes()
     best: dict[str, float] = {}
@@ -338,18 +342,18 @@ def _breakdown(path: Path) -> dict[str, float]:
         gc.collect()
         times = {}
         start = time.process_time()
-        with aaxl2.gc_paused():
+        with gc_paused():
             tree = parse_xml_bytes(data, str(path), remove_blank_text=True)  # as the import parses
             times["parse"] = time.process_time() - start
-            reader = aaxl2._Reader(str(path), tree, strict=False)
+            reader = Reader(str(path), tree, strict=False)
             mark = time.process_time()
-            reader.read_instance_roots(tree.getroot())
+            read_instance_roots(reader, tree.getroot())
             times["build"] = time.process_time() - mark
             mark = time.process_time()
-            reader.resolve_pending()
+            resolve_pending(reader)
             times["resolve"] = time.process_time() - mark
             mark = time.process_time()
-            reader.decode_literals()
+            decode_literals(reader)
             times["decode"] = time.process_time() - mark
             mark = time.process_time()
         _ = [[] for _ in range(1000)]  # the first allocations after the pause trigger the collection

@@ -522,16 +522,16 @@ def test_user_property_set_literals_resolve_to_the_values(written: Path) -> None
 
 
 def test_private_classifiers_are_counted_in_their_own_section(workspace, instance) -> None:
-    from rosaadl.exporters.aaxl2 import _Writer
+    from rosaadl.exporters.aaxl2.state import Writer
 
-    writer = _Writer(instance, workspace, [])
+    links = Writer(instance, workspace, []).links
     package = model.find_unit(workspace, "demo::top")
-    fragments = {c.name: writer.classifier_fragment(c) for c in package.classifiers}
+    fragments = {c.name: links.classifier_fragment(c) for c in package.classifiers}
     assert fragments["hidden"] == "@ownedPrivateSection/@ownedClassifier.0"
     assert fragments["top.spare"] == "@ownedPrivateSection/@ownedClassifier.1"
     assert fragments["top.impl"] == "@ownedPublicSection/@ownedClassifier.11"
     spare = package.classifiers[-1]
-    assert writer.member_fragment(spare.subcomponents[0]) == (
+    assert links.member_fragment(spare.subcomponents[0]) == (
         "@ownedPrivateSection/@ownedClassifier.1/@ownedDataSubcomponent.0"
     )
 

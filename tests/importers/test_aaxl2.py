@@ -357,6 +357,20 @@ def test_declarative_package(corpus: Path) -> None:
 
 
 @pytest.mark.corpus
+def test_a_subcomponent_of_no_known_category_is_an_unknown_element(corpus: Path) -> None:
+    path = _file(corpus, "smaccm-geofence-declarative")
+    text = path.read_text(encoding="ascii")
+    data = text.replace('<ownedDataSubcomponent name="x"', '<ownedBogusSubcomponent name="x"', 1)
+    assert data != text
+    result = loads_aaxl2(data.encode("ascii"), str(path))
+    coord = model.find_classifier(result.model, "Geofence::coord.i")
+    assert [s.name for s in coord.subcomponents] == ["y"]
+    assert any("ownedBogusSubcomponent" in w.message for w in result.warnings)
+    with pytest.raises(ImportFormatError, match="ownedBogusSubcomponent"):
+        loads_aaxl2(data.encode("ascii"), str(path), strict=True)
+
+
+@pytest.mark.corpus
 def test_declarative_2013_package_and_property_set(corpus: Path) -> None:
     package = _read(corpus, "ex-issue168-declarative-package")
     (pkg,) = package.model.units

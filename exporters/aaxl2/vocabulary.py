@@ -1,0 +1,99 @@
+"""What the ``.aaxl2`` writer names: OSATE's namespaces, classes and containment lists.
+
+The namespaces a document declares, the era whose layout of OSATE's property sets the writer
+follows, where OSATE keeps its own packages, and the ``aadl2`` classes (and so the
+``owned<Class>`` containment lists) of declarations per AADL category, feature category and
+connection kind. The namespace URIs are the reader's (:mod:`rosaadl.importers.aaxl2.xmi`).
+"""
+
+from __future__ import annotations
+
+import re
+
+from rosaadl.importers import osate_eras
+from rosaadl.importers.aaxl2.xmi import NS_AADL2, NS_INSTANCE, NS_XMI, NS_XSI
+
+__all__ = [
+    "ERA",
+    "NAMESPACES",
+    "OSATE_PACKAGES",
+    "ID_RE",
+    "FILE_STEM_RE",
+    "CATEGORY_CLASS",
+    "FEATURE_CLASS",
+    "INSTANCE_FEATURE_CATEGORY",
+    "CONNECTION_CLASS",
+    "OPERATORS",
+    "OWNED_STEP_RE",
+    "FRAGMENT_RE",
+    "CLASS_OF_STEP",
+]
+
+#: The OSATE era whose layout of the predeclared property sets the writer follows.
+ERA = osate_eras.CURRENT_ERA
+NAMESPACES = (
+    ("xmi", NS_XMI),
+    ("xsi", NS_XSI),
+    ("aadl2", NS_AADL2),
+    ("instance", NS_INSTANCE),
+)
+#: OSATE's own packages (besides the property sets the era tables know) and where it keeps them.
+OSATE_PACKAGES = {
+    "base_types": "platform:/plugin/org.osate.contribution.sei/resources/packages/Base_Types.aadl",
+}
+
+# an AADL identifier (what instance objects must be named), and an instance file name's stem
+ID_RE = re.compile(r"[A-Za-z](?:_?[A-Za-z0-9])*\Z")
+FILE_STEM_RE = re.compile(r"[A-Za-z0-9_]+\Z")
+
+# AADL category (our enumeration names) → OSATE class-name stem
+CATEGORY_CLASS = {
+    "abstract": "Abstract",
+    "bus": "Bus",
+    "data": "Data",
+    "device": "Device",
+    "memory": "Memory",
+    "process": "Process",
+    "processor": "Processor",
+    "subprogram": "Subprogram",
+    "subprogramGroup": "SubprogramGroup",
+    "system": "System",
+    "thread": "Thread",
+    "threadGroup": "ThreadGroup",
+    "virtualBus": "VirtualBus",
+    "virtualProcessor": "VirtualProcessor",
+}
+# feature category → the aadl2 class of the declaration (its containment list is owned<Class>);
+# a virtual bus access is a BusAccess in aadl2 (``virtual`` set) and an instance's busAccess
+FEATURE_CLASS = {
+    "dataPort": "DataPort",
+    "eventPort": "EventPort",
+    "eventDataPort": "EventDataPort",
+    "parameter": "Parameter",
+    "busAccess": "BusAccess",
+    "virtualBusAccess": "BusAccess",
+    "dataAccess": "DataAccess",
+    "subprogramAccess": "SubprogramAccess",
+    "subprogramGroupAccess": "SubprogramGroupAccess",
+    "featureGroup": "FeatureGroup",
+    "abstractFeature": "AbstractFeature",
+}
+INSTANCE_FEATURE_CATEGORY = {"virtualBusAccess": "busAccess"}
+CONNECTION_CLASS = {
+    "portConnection": "PortConnection",
+    "accessConnection": "AccessConnection",
+    "featureConnection": "FeatureConnection",
+    "featureGroupConnection": "FeatureGroupConnection",
+    "parameterConnection": "ParameterConnection",
+}
+OPERATORS = {"and": "and", "or": "or", "not": "not", "+": "+", "plus": "+", "-": "-", "minus": "-"}
+# the aadl2 classes an opaque positional reference may end in (``…/@ownedDataPort.0`` → DataPort)
+OWNED_STEP_RE = re.compile(r"@owned([A-Z][A-Za-z]*?)\.\d+\Z")
+FRAGMENT_RE = re.compile(r"(?:/0)?/?(?:/@[A-Za-z]+(?:\.\d+)?)+|/0|/")
+CLASS_OF_STEP = frozenset(
+    list(FEATURE_CLASS.values())
+    + [f"{c}Subcomponent" for c in CATEGORY_CLASS.values()]
+    + list(CONNECTION_CLASS.values())
+    + ["SubprogramCallSequence", "SubprogramCall", "Mode", "ModeTransition", "FlowSpecification"]
+    + ["EndToEndFlow", "FlowImplementation", "Prototype", "Classifier"]
+)

@@ -1,0 +1,163 @@
+"""The vocabulary of OSATE's ``.aaxl2`` files, and how the text of a reference is split.
+
+Namespaces and root tags; the ``xsi:type`` class names a link into the declarative model may
+carry (checked, never guessed); which containment list of our metamodel each instance element
+tag fills (what ``@tag.N`` in an EMF path counts, for the reader and the writer alike); and the
+pure functions that turn a reference's text (``../P.aadl#P.L.i``, ``aadl2:DataType uri#frag``)
+into the names the model keeps.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "NS_XMI",
+    "NS_XSI",
+    "NS_AADL2",
+    "NS_INSTANCE",
+    "XSI_TYPE",
+    "XSI_TYPE_KEY",
+    "XMI_ID",
+    "XMI_ID_KEY",
+    "ROOT_SYSTEM",
+    "ROOT_COMPONENT",
+    "ROOT_XMI",
+    "ROOT_PACKAGE",
+    "ROOT_PROPERTY_SET",
+    "FEATURE_TYPES",
+    "CATEGORIES",
+    "SUBCOMPONENT_TYPES",
+    "CLASSIFIER_TYPES",
+    "CONNECTION_TYPES",
+    "TAG_FEATURE",
+    "PA_IGNORED",
+    "DECLARATIVE_LINKS",
+    "qualified_name",
+    "name_of",
+    "is_positional",
+    "split_ref_attribute",
+]
+
+NS_XMI = "http://www.omg.org/XMI"
+NS_XSI = "http://www.w3.org/2001/XMLSchema-instance"
+NS_AADL2 = "http://aadl.info/AADL/2.0"
+NS_INSTANCE = "http://aadl.info/AADL/2.0/instance"
+
+XSI_TYPE = f"{{{NS_XSI}}}type"
+# the same key as bytes: lxml reads an attribute by it without encoding the key each time
+XSI_TYPE_KEY = XSI_TYPE.encode()
+XMI_ID = f"{{{NS_XMI}}}id"
+XMI_ID_KEY = XMI_ID.encode()
+ROOT_SYSTEM = f"{{{NS_INSTANCE}}}SystemInstance"
+ROOT_COMPONENT = f"{{{NS_INSTANCE}}}ComponentInstance"
+ROOT_XMI = f"{{{NS_XMI}}}XMI"
+ROOT_PACKAGE = f"{{{NS_AADL2}}}Package"
+ROOT_PROPERTY_SET = f"{{{NS_AADL2}}}PropertySet"
+
+# xsi:type local names that may appear on declarative link elements (checked, never guessed).
+FEATURE_TYPES = frozenset(
+    {
+        "DataPort",
+        "EventPort",
+        "EventDataPort",
+        "Parameter",
+        "BusAccess",
+        "DataAccess",
+        "SubprogramAccess",
+        "SubprogramGroupAccess",
+        "VirtualBusAccess",
+        "FeatureGroup",
+        "AbstractFeature",
+        "FeaturePrototype",
+    }
+)
+CATEGORIES = (
+    "Abstract",
+    "Bus",
+    "Data",
+    "Device",
+    "Memory",
+    "Process",
+    "Processor",
+    "Subprogram",
+    "SubprogramGroup",
+    "System",
+    "Thread",
+    "ThreadGroup",
+    "VirtualBus",
+    "VirtualProcessor",
+)
+SUBCOMPONENT_TYPES = frozenset(f"{c}Subcomponent" for c in CATEGORIES)
+CLASSIFIER_TYPES = frozenset(
+    [f"{c}Type" for c in CATEGORIES] + [f"{c}Implementation" for c in CATEGORIES] + ["FeatureGroupType"]
+)
+CONNECTION_TYPES = frozenset(
+    {
+        "PortConnection",
+        "AccessConnection",
+        "FeatureConnection",
+        "FeatureGroupConnection",
+        "ParameterConnection",
+    }
+)
+
+# instance element tag → feature of our metamodel holding the objects made from it; the
+# per-tag position of a child in its parent is what ``@tag.N`` in a reference means.
+TAG_FEATURE = {
+    "componentInstance": "componentInstances",
+    "featureInstance": "featureInstances",
+    "connectionInstance": "connectionInstances",
+    "flowSpecification": "flowSpecifications",
+    "endToEndFlow": "endToEndFlows",
+    "modeInstance": "modeInstances",
+    "modeTransitionInstance": "modeTransitionInstances",
+    "systemOperationMode": "systemOperationModes",
+    "connectionReference": "connectionReferences",
+    "ownedPropertyAssociation": "ownedPropertyAssociations",
+    "annexInstance": "annexInstances",
+}
+
+# children of a property association that the instance model does not keep
+PA_IGNORED = frozenset({"property", "propertyAssociation", "appliesTo", "inBinding"})
+
+# elements that only link an instance object to its declarative element, whose name the
+# instance object already carries (kept by position in the file, not needed here).
+DECLARATIVE_LINKS = frozenset(
+    {
+        "feature",
+        "subcomponent",
+        "flowSpecification",
+        "endToEndFlow",
+        "mode",
+        "modeTransition",
+        "propertyAssociation",
+    }
+)
+
+
+def qualified_name(fragment: str) -> str:
+    """Xtext qualified name ``P.L.i`` / ``a::b.L.i`` / ``Set.Prop`` → ``P::L.i`` / ``a::b::L.i``."""
+    head, sep, local = fragment.partition(".")
+    if not sep:
+        return fragment
+    return f"{head}::{local}"
+
+
+def name_of(uri: str, fragment: str) -> str:
+    """A link as we keep it: ``P::L.i`` for a fragment by qualified name, else ``uri#fragment``."""
+    if not fragment or is_positional(fragment):
+        return f"{uri}#{fragment}"
+    return qualified_name(fragment)
+
+
+def is_positional(fragment: str) -> bool:
+    return fragment.startswith("/") or fragment.startswith("@")
+
+
+def split_ref_attribute(text: str) -> tuple[str | None, str, str]:
+    """Attribute-form reference ``aadl2:DataType ../X.aadl#X.T`` → (type, uri, fragment)."""
+    xsi_type = None
+    value = text.strip()
+    if " " in value:
+        xsi_type, _, value = value.partition(" ")
+    uri, _, frag = value.partition("#")
+    return xsi_type, uri, frag
