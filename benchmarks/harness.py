@@ -118,13 +118,17 @@ class Timing:
     def calls(self) -> int:
         return len(self.cpu_calls)
 
-    def _call(self, action: Callable[..., Any], args: tuple, memory: bool) -> float:
+    def _call(self, action: Callable[..., Any], args: tuple, memory: bool, keep: bool) -> float:
+        self.result = None  # the previous round's result is not part of this round's heap
         gc.collect()
         start_rss = _reset_peak() if memory else None
         start_wall, start_cpu = time.perf_counter(), time.process_time()
-        self.result = action(*args)
+        result = action(*args)
         cpu = time.process_time() - start_cpu
         wall = time.perf_counter() - start_wall
+        if keep:
+            self.result = result
+        del result
         if start_rss is not None:
             peak = _status_kib("VmHWM:")
             if peak is not None:
@@ -143,13 +147,14 @@ def best_of(
     memory: bool = True,
 ) -> Timing:
     """Call ``action`` ``rounds`` times (at least once), each after ``gc.collect()``, and keep the
-    best CPU and wall times; ``setup``, when given, is called before each round outside the
+    best CPU and wall times and the last result (each round's result is let go before the next
+    round); ``setup``, when given, is called before each round outside the
     measure and its result passed to ``action`` (what must not be timed: a fresh resource set,
     say). ``memory=False`` leaves out the peak memory."""
     timing = Timing()
     for _ in range(max(1, rounds)):
         args = () if setup is None else (setup(),)
-        timing._call(action, args, memory)
+        timing._call(action, args, memory, keep=True)
     return timing
 
 
@@ -173,7 +178,9 @@ def alternate(
     gives it) came out up to 10 % lower than over as many calls as ours. Each call is collected
     before as :func:`best_of` does. ``Timing.settled_cpu`` is the best over the calls that follow
     a call of the same action (each block but its first call): for large inputs the first call
-    after another action runs on memory that action left consolidated, and differs.
+    after another action runs on memory that action left consolidated, and differs. The results
+    are not kept (``Timing.result`` is None): one action's result would be on the heap the
+    others' calls run on and collect.
     """
     timings = {name: Timing() for name in actions}
     for _ in range(max(1, rounds)):
@@ -186,7 +193,7 @@ def alternate(
                         break
                 elif calls >= block:
                     break
-                cpu = timing._call(action, (), memory)
+                cpu = timing._call(action, (), memory, keep=False)
                 if calls:
                     timing.settled_cpu = min(timing.settled_cpu, cpu)
                 spent += cpu

@@ -3,11 +3,13 @@
 * :func:`aadl_package_text`: one package of N components, threads with ports, flows and
   properties in processes with connections and contained property associations
   (``bench_aadl_syntax``, ``bench_aadl_reader``).
+* :func:`instantiable_package_text`: a property set and a package whose system instantiates to
+  N instance objects (``bench_aaxl2_export``).
 """
 
 from __future__ import annotations
 
-__all__ = ["aadl_package_text"]
+__all__ = ["aadl_package_text", "instantiable_package_text"]
 
 
 def aadl_package_text(components: int = 10_000) -> str:
@@ -53,3 +55,69 @@ def aadl_package_text(components: int = 10_000) -> str:
     )
     out.append("  end S.impl;\nend Generated;\n")
     return "".join(out)
+
+
+def instantiable_package_text(objects: int = 50_000, threads_per_process: int = 40) -> str:
+    """AADL text (a property set and package ``gen``) whose instance of ``gen::top.impl`` has about
+    ``objects`` instance objects and values.
+
+    Processors, and processes of periodic threads with an in and an out port, chained by port
+    connections, every thread with Period, Compute_Execution_Time, Dispatch_Protocol, a
+    user-property-set enumeration and units, every process bound to a processor.
+    """
+    # per thread: the component, 2 features with their inherited values, 6 associations with
+    # their values, a connection with its reference: about 50 objects (measured)
+    per_process = threads_per_process * 50 + 34
+    processes = max(1, -(-objects // per_process))  # at least ``objects``
+    lines = [
+        "property set gen_props is",
+        "  Size_Units: type units (B, KB => B * 1000);",
+        "  Level: enumeration (low, mid, high) applies to (all);",
+        "  Budget: aadlinteger units gen_props::Size_Units applies to (all);",
+        "end gen_props;",
+        "",
+        "package gen",
+        "public",
+        "  with gen_props;",
+        "  data msg",
+        "    properties",
+        "      Data_Size => 16 Bytes;",
+        "  end msg;",
+        "  thread worker",
+        "    features",
+        "      inp: in event data port msg;",
+        "      outp: out event data port msg;",
+        "    properties",
+        "      Dispatch_Protocol => Periodic;",
+        "      Period => 20 ms;",
+        "      Compute_Execution_Time => 1 ms .. 3 ms;",
+        "      gen_props::Level => mid;",
+        "      gen_props::Budget => 4 KB;",
+        "  end worker;",
+        "  thread implementation worker.impl",
+        "  end worker.impl;",
+        "  processor cpu",
+        "  end cpu;",
+        "  process app",
+        "    features",
+        "      inp: in event data port msg;",
+        "      outp: out event data port msg;",
+        "  end app;",
+        "  process implementation app.impl",
+        "    subcomponents",
+    ]
+    lines += [f"      t{i}: thread worker.impl;" for i in range(threads_per_process)]
+    lines += ["    connections", "      cin: port inp -> t0.inp;"]
+    lines += [f"      c{i}: port t{i}.outp -> t{i + 1}.inp;" for i in range(threads_per_process - 1)]
+    lines += [f"      cout: port t{threads_per_process - 1}.outp -> outp;", "  end app.impl;"]
+    lines += ["  system top", "  end top;", "  system implementation top.impl", "    subcomponents"]
+    lines += [f"      p{i}: process app.impl;" for i in range(processes)]
+    lines += [f"      cpu{i}: processor cpu;" for i in range(processes)]
+    lines += ["    connections"]
+    lines += [f"      x{i}: port p{i}.outp -> p{i + 1}.inp;" for i in range(processes - 1)]
+    lines += ["    properties"]
+    lines += [
+        f"      Actual_Processor_Binding => (reference (cpu{i})) applies to p{i};" for i in range(processes)
+    ]
+    lines += ["  end top.impl;", "end gen;", ""]
+    return "\n".join(lines)
