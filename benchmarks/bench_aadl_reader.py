@@ -1,10 +1,11 @@
 """Throughput of the AADL text reader (the package ``importers/aadl_text/``), next to the parser alone.
 
-Side by side, in MB/s of AADL text (wall clock, and CPU time of this process, which is what
-counts on a shared machine), on every ``.aadl``/``.aadl2`` file of the real-world corpus
-(``$ROSAADL_CORPUS`` or ``../shared/corpus``) and on the generated package of
-``bench_aadl_syntax`` (10 000 components: threads with ports, flows and properties in processes
-with connections and contained property associations):
+Side by side, in MB/s of AADL text (CPU time of this process, which is what counts on a shared
+machine; the wall-clock rate in the note), on every ``.aadl``/``.aadl2`` file of the real-world
+corpus (``$ROSAADL_CORPUS`` or ``../shared/corpus``) and on the generated package of
+``bench_aadl_syntax`` (``benchmarks.generators.aadl_text.aadl_package_text``, 10 000
+components: threads with ports, flows and properties in processes with connections and
+contained property associations):
 
   * ``parse``: ``aadl_syntax.parse`` alone, the floor of the reader;
   * ``read_string``: parse and build the model (``rosaadl.importers.aadl_text.read_string``);
@@ -12,48 +13,24 @@ with connections and contained property associations):
     and enumeration literal checked across all units (generated package only: the corpus is
     many separate projects).
 
-Usage: ``python benchmarks/bench_aadl_reader.py [--repeat N] [--components N]``.
+Usage: ``python -m benchmarks.bench_aadl_reader [--repeat N] [--components N]``.
 Target of the issue: the reader reads >= 1 MB/s.
 """
 
 from __future__ import annotations
 
 import argparse
-import gc
 import logging
-import sys
 import tempfile
-import time
-from collections.abc import Callable
 from pathlib import Path
+
+from benchmarks.generators.aadl_text import aadl_package_text
+from benchmarks.generators.corpus import aadl_texts
+from benchmarks.harness import Goal, Report, best_of
 
 __all__ = ["main"]
 
-try:
-    from benchmarks.bench_aadl_syntax import corpus_texts, generated_package
-except ImportError:  # run as a script from the benchmarks folder
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from bench_aadl_syntax import corpus_texts, generated_package  # type: ignore[no-redef]
-
-
-def best_time(action: Callable[[], object], repeat: int) -> tuple[float, float]:
-    """The best wall-clock and the best CPU time of ``repeat`` runs.
-
-    The models of earlier runs are collected before each run, outside the measure: pyecore
-    objects live in reference cycles, so only the garbage collector frees them."""
-    wall = cpu = float("inf")
-    for _ in range(repeat):
-        gc.collect()
-        start, start_cpu = time.perf_counter(), time.process_time()
-        action()
-        wall = min(wall, time.perf_counter() - start)
-        cpu = min(cpu, time.process_time() - start_cpu)
-    return wall, cpu
-
-
-def row(label: str, what: str, size: int, wall: float, cpu: float) -> str:
-    rates = f"{size / wall / 1e6:8.2f} {size / cpu / 1e6:9.2f}"
-    return f"{label:<10} {what:<12} {size / 1e6:7.2f} MB {wall:8.3f} s {rates}"
+READ_GOAL = Goal(1.0, at_most=False)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -67,35 +44,41 @@ def main(argv: list[str] | None = None) -> int:
     logging.getLogger("rosaadl").setLevel(logging.ERROR)  # tool-generated corpus files warn
     aadl_syntax.parse("package Warm_Up public end Warm_Up;")  # grammar tables, once per process
     aadl_text.read_string("package Warm_Up public system S end S; end Warm_Up;")
-    print(f"{'input':<10} {'stage':<12} {'size':>10} {'time':>10} {'MB/s':>8} {'MB/s CPU':>9}")
+    report = Report("aadl_reader")
 
-    corpus = corpus_texts()
+    corpus = aadl_texts()
     if corpus:
-        size = sum(len(data) for _, data in corpus)
-        wall, cpu = best_time(lambda: [aadl_syntax.parse(data, name) for name, data in corpus], args.repeat)
-        print(row("corpus", "parse", size, wall, cpu))
-        wall, cpu = best_time(
-            lambda: [aadl_text.read_string(data, name) for name, data in corpus], args.repeat
-        )
-        print(row("corpus", "read_string", size, wall, cpu))
-        print(f"           ({len(corpus)} files)")
+        size = sum(len(data) for _, data in corpus) / 1e6
+        parse = best_of(lambda: [aadl_syntax.parse(data, name) for name, data in corpus], args.repeat)
+        read = best_of(lambda: [aadl_text.read_string(data, name) for name, data in corpus], args.repeat)
+        what = f"{len(corpus)} files, {size:.2f} MB"
+        report.rate("corpus: parse", parse, size, note=what, detail=True)
+        report.rate("corpus: read_string", read, size, parse, against="parse", goal=READ_GOAL, note=what)
     else:
         print("corpus: not found (set ROSAADL_CORPUS); skipped")
 
-    text = generated_package(args.components).encode("utf-8")
-    size = len(text)
+    text = aadl_package_text(args.components).encode("utf-8")
+    size = len(text) / 1e6
     label = f"gen {args.components // 1000}k" if args.components >= 1000 else f"gen {args.components}"
-    wall, cpu = best_time(lambda: aadl_syntax.parse(text, "<generated>"), args.repeat)
-    print(row(label, "parse", size, wall, cpu))
-    wall, cpu = best_time(lambda: aadl_text.read_string(text, "<generated>"), args.repeat)
-    print(row(label, "read_string", size, wall, cpu))
+    parse = best_of(lambda: aadl_syntax.parse(text, "<generated>"), args.repeat)
+    read = best_of(lambda: aadl_text.read_string(text, "<generated>"), args.repeat)
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "generated.aadl"
         path.write_bytes(text)
-        wall, cpu = best_time(lambda: aadl_text.read_files([path]), args.repeat)
-        print(row(label, "read_files", size, wall, cpu))
-    print("(read_files: with the component library, names, units and literals checked)")
-    return 0
+        files = best_of(lambda: aadl_text.read_files([path]), args.repeat)
+    what = f"{size:.2f} MB"
+    report.rate(f"{label}: parse", parse, size, note=what, detail=True)
+    report.rate(f"{label}: read_string", read, size, parse, against="parse", goal=READ_GOAL, note=what)
+    report.rate(
+        f"{label}: read_files",
+        files,
+        size,
+        parse,
+        against="parse",
+        goal=READ_GOAL,
+        note=f"{what}, with the component library, names, units and literals checked",
+    )
+    return report.finish()
 
 
 if __name__ == "__main__":

@@ -10,13 +10,15 @@ Export, side by side in one run (CPU time, best of R):
     references into ``.aadl`` files it cannot resolve).
 Cases: every corpus instance file as read by the importer (no declarative model: opaque
 references kept), every corpus instance whose sources instantiate (hrefs into the sidecars
-computed), a generated instance file of 50 000 objects read back, and a generated AADL model of
-50 000 instance objects instantiated and exported.
+computed), a generated instance file of 50 000 objects read back
+(``benchmarks.generators.aaxl2.write_aaxl2_instance``), and a generated AADL model of 50 000
+instance objects (``benchmarks.generators.aadl_text.instantiable_package_text``) instantiated
+and exported.
 
 Reading, the cases ``bench_aaxl2`` cannot compare with pyecore: the corpus file with EMV2 annex
 instances (pyecore needs OSATE's optional EMV2 metamodels, loaded here), and our own export of
 the generated instantiated model (current era, hrefs into sidecars), against the raw lxml parse
-and pyecore's ``XMIResource`` with OSATE's metamodel.
+and pyecore's ``XMIResource`` with OSATE's metamodel (``benchmarks.generators.osate``).
 
 Usage: ``python -m benchmarks.bench_aaxl2_export [--objects N] [--repeat R] [--corpus DIR]``.
 """
@@ -24,106 +26,30 @@ Usage: ``python -m benchmarks.bench_aaxl2_export [--objects N] [--repeat R] [--c
 from __future__ import annotations
 
 import argparse
-import gc
-import hashlib
 import io
 import logging
-import os
 import re
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-__all__ = ["main", "generate_model"]
+from benchmarks.generators.aadl_text import instantiable_package_text
+from benchmarks.generators.aaxl2 import write_aaxl2_instance
+from benchmarks.generators.corpus import aadl_sources, aaxl2_instance_files, corpus_dir
+from benchmarks.generators.osate import osate_metamodels
+from benchmarks.harness import Report, Timing, best_of
 
-
-def _best(func, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        gc.collect()
-        start = time.process_time()
-        func()
-        best = min(best, time.process_time() - start)
-    return best
-
-
-# --------------------------------------------------------------------------- generated model
-
-
-def generate_model(objects: int = 50_000, threads_per_process: int = 40) -> str:
-    """AADL text whose instance has about ``objects`` instance objects and values.
-
-    Processors, and processes of periodic threads with an in and an out port, chained by port
-    connections, every thread with Period, Compute_Execution_Time, Dispatch_Protocol, a
-    user-property-set enumeration and units, every process bound to a processor.
-    """
-    # per thread: the component, 2 features with their inherited values, 6 associations with
-    # their values, a connection with its reference: about 50 objects (measured)
-    per_process = threads_per_process * 50 + 34
-    processes = max(1, -(-objects // per_process))  # at least ``objects``
-    lines = [
-        "property set gen_props is",
-        "  Size_Units: type units (B, KB => B * 1000);",
-        "  Level: enumeration (low, mid, high) applies to (all);",
-        "  Budget: aadlinteger units gen_props::Size_Units applies to (all);",
-        "end gen_props;",
-        "",
-        "package gen",
-        "public",
-        "  with gen_props;",
-        "  data msg",
-        "    properties",
-        "      Data_Size => 16 Bytes;",
-        "  end msg;",
-        "  thread worker",
-        "    features",
-        "      inp: in event data port msg;",
-        "      outp: out event data port msg;",
-        "    properties",
-        "      Dispatch_Protocol => Periodic;",
-        "      Period => 20 ms;",
-        "      Compute_Execution_Time => 1 ms .. 3 ms;",
-        "      gen_props::Level => mid;",
-        "      gen_props::Budget => 4 KB;",
-        "  end worker;",
-        "  thread implementation worker.impl",
-        "  end worker.impl;",
-        "  processor cpu",
-        "  end cpu;",
-        "  process app",
-        "    features",
-        "      inp: in event data port msg;",
-        "      outp: out event data port msg;",
-        "  end app;",
-        "  process implementation app.impl",
-        "    subcomponents",
-    ]
-    lines += [f"      t{i}: thread worker.impl;" for i in range(threads_per_process)]
-    lines += ["    connections", "      cin: port inp -> t0.inp;"]
-    lines += [f"      c{i}: port t{i}.outp -> t{i + 1}.inp;" for i in range(threads_per_process - 1)]
-    lines += [f"      cout: port t{threads_per_process - 1}.outp -> outp;", "  end app.impl;"]
-    lines += ["  system top", "  end top;", "  system implementation top.impl", "    subcomponents"]
-    lines += [f"      p{i}: process app.impl;" for i in range(processes)]
-    lines += [f"      cpu{i}: processor cpu;" for i in range(processes)]
-    lines += ["    connections"]
-    lines += [f"      x{i}: port p{i}.outp -> p{i + 1}.inp;" for i in range(processes - 1)]
-    lines += ["    properties"]
-    lines += [
-        f"      Actual_Processor_Binding => (reference (cpu{i})) applies to p{i};" for i in range(processes)
-    ]
-    lines += ["  end top.impl;", "end gen;", ""]
-    return "\n".join(lines)
+__all__ = ["main"]
 
 
 # --------------------------------------------------------------------------- measuring
 
 
-def _floor(data: bytes) -> float:
+def _serialise(data: bytes):
     from lxml import etree
 
     tree = etree.ElementTree(etree.fromstring(data))
-    return lambda: etree.tostring(tree, xml_declaration=True, encoding="ASCII")  # type: ignore[return-value]
+    return lambda: etree.tostring(tree, xml_declaration=True, encoding="ASCII")
 
 
 def _export_row(subject, repeat: int) -> dict:
@@ -133,29 +59,15 @@ def _export_row(subject, repeat: int) -> dict:
     result = export_aaxl2(subject)
     system = result.instance
     objects = sum(1 for _ in model.walk(system))
-    ours = _best(lambda: export_aaxl2(subject), repeat)
-    floor = _best(_floor(result.data), repeat)  # type: ignore[arg-type]
-    pyecore = _best(lambda: model.dumps_xmi(system), 1 if objects > 10_000 else repeat)
     return {
         "objects": objects,
-        "ours": ours,
-        "floor": floor,
-        "pyecore": pyecore,
+        "ours": best_of(lambda: export_aaxl2(subject), repeat),
+        "floor": best_of(_serialise(result.data), repeat),
+        "pyecore": best_of(lambda: model.dumps_xmi(system), 1 if objects > 10_000 else repeat),
         "kib": len(result.data) // 1024,
         "sidecars": len(result.sidecars),
         "data": result.data,
     }
-
-
-def _sources(folder: Path) -> list[Path]:
-    seen, out = set(), []
-    for path in sorted(folder.rglob("*")):
-        if path.suffix.lower() in (".aadl", ".aadl2") and path.is_file():
-            digest = hashlib.sha1(path.read_bytes()).hexdigest()
-            if digest not in seen:
-                seen.add(digest)
-                out.append(path)
-    return out
 
 
 def _instantiable(path: Path, folder: Path):
@@ -166,7 +78,7 @@ def _instantiable(path: Path, folder: Path):
 
     text = path.read_text(encoding="ascii", errors="replace")
     match = re.search(r'<(componentImplementation|systemImplementation)[^>]*href="([^"#]*)#([^"]+)"', text)
-    sources = _sources(folder)
+    sources = aadl_sources(folder)
     if match is None or not sources:
         return None
     try:
@@ -186,26 +98,9 @@ def _instantiable(path: Path, folder: Path):
         return None
 
 
-def _pyecore_resource_set(metamodel_dir: Path, with_emv2: bool):
-    """OSATE's metamodels in pyecore, patched as ``bench_aaxl2`` does (numbers, Java literals),
-    with the optional EMV2 metamodels when asked."""
-    from pyecore.resources import URI
-
-    from benchmarks.bench_aaxl2 import _osate_resource_set
-
-    rset = _osate_resource_set(metamodel_dir)
-    if with_emv2:
-        optional = metamodel_dir / "optional"
-        rset.uri_mapper["platform:/resource/org.osate.aadl2/model"] = str(metamodel_dir)
-        rset.uri_mapper["../../org.osate.aadl2/model"] = str(metamodel_dir)
-        rset.uri_mapper["../../org.osate.xtext.aadl2.errormodel/model/generated"] = str(optional)
-        for name in ("ErrorModel.ecore", "EMV2Instance.ecore"):
-            package = rset.get_resource(URI(str(optional / name))).contents[0]
-            rset.metamodel_registry[package.nsURI] = package
-    return rset
-
-
-def _pyecore_read(metamodel_dir: Path, data: bytes, with_emv2: bool) -> float:
+def _pyecore_read(metamodel_dir: Path, data: bytes, with_emv2: bool, rounds: int) -> Timing:
+    """pyecore's ``XMIResource`` loading ``data`` with OSATE's metamodels; their preparation is
+    not part of it (a new resource set before each round)."""
     from pyecore.resources import URI
     from pyecore.resources.xmi import XMIResource
 
@@ -216,13 +111,12 @@ def _pyecore_read(metamodel_dir: Path, data: bytes, with_emv2: bool) -> float:
         def close_stream(self):
             pass
 
-    rset = _pyecore_resource_set(metamodel_dir, with_emv2)
-    gc.collect()
-    start = time.process_time()
-    resource = XMIResource(Memory("memory.aaxl2"))
-    resource.resource_set = rset
-    resource.load()
-    return time.process_time() - start
+    def load(rset) -> None:
+        resource = XMIResource(Memory("memory.aaxl2"))
+        resource.resource_set = rset
+        resource.load()
+
+    return best_of(load, rounds, setup=lambda: osate_metamodels(metamodel_dir, with_emv2=with_emv2)[0])
 
 
 def _read_row(data: bytes, metamodel_dir: Path | None, repeat: int, with_emv2: bool = False) -> dict:
@@ -231,14 +125,12 @@ def _read_row(data: bytes, metamodel_dir: Path | None, repeat: int, with_emv2: b
     from rosaadl.importers.aaxl2 import loads_aaxl2
 
     objects = sum(1 for _ in model.walk(loads_aaxl2(data).model))
-    floor = _best(lambda: parse_xml_bytes(data, "<bench>"), repeat)
-    ours = _best(lambda: loads_aaxl2(data), repeat)
+    floor = best_of(lambda: parse_xml_bytes(data, "<bench>"), repeat)
+    ours = best_of(lambda: loads_aaxl2(data), repeat)
     pyecore, note = None, ""
     if metamodel_dir is not None:
         try:
-            pyecore = min(
-                _pyecore_read(metamodel_dir, data, with_emv2) for _ in range(1 if objects > 10_000 else 3)
-            )
+            pyecore = _pyecore_read(metamodel_dir, data, with_emv2, 1 if objects > 10_000 else 3)
         except Exception as exc:  # pyecore's failure is a result here
             note = f"pyecore fails: {type(exc).__name__}: {str(exc).splitlines()[0][:50]}"
     return {"objects": objects, "floor": floor, "ours": ours, "pyecore": pyecore, "note": note}
@@ -247,42 +139,33 @@ def _read_row(data: bytes, metamodel_dir: Path | None, repeat: int, with_emv2: b
 # --------------------------------------------------------------------------- report
 
 
-def _print_export(rows: list[tuple[str, dict]]) -> None:
-    print(
-        f"{'export (ours: .aaxl2 and sidecars)':40s} {'objects':>8s} {'KiB':>6s} {'ours ms':>8s} "
-        f"{'floor ms':>9s} {'/floor':>7s} "
-        f"{'pyecore ms':>11s} {'pyecore/ours':>13s}"
+def _report_export(report: Report, label: str, row: dict, detail: bool) -> None:
+    what = f"{row['objects']} objects, {row['kib']} KiB"
+    pyecore = f"pyecore {row['pyecore'].cpu * 1000:.2f} ms, {row['pyecore'].cpu / row['ours'].cpu:.1f}x ours"
+    report.time(
+        f"export {label}",
+        row["ours"],
+        row["floor"],
+        against="lxml write",
+        note=f"{what}; {pyecore}",
+        detail=detail,
     )
-    for label, row in rows:
-        print(
-            f"{label[:40]:40s} {row['objects']:8d} {row['kib']:6d} {row['ours'] * 1000:8.2f} "
-            f"{row['floor'] * 1000:9.2f} {row['ours'] / row['floor']:6.1f}x {row['pyecore'] * 1000:11.2f} "
-            f"{row['pyecore'] / row['ours']:12.1f}x"
-        )
+    if not detail:
+        report.time(f"export {label}", row["ours"], row["pyecore"], against="pyecore", note=what)
 
 
-def _print_read(rows: list[tuple[str, dict]]) -> None:
-    print(
-        f"{'read':40s} {'objects':>8s} {'floor ms':>9s} {'ours ms':>8s} {'/floor':>7s} "
-        f"{'pyecore ms':>11s} {'pyecore/ours':>13s}"
-    )
-    for label, row in rows:
-        py = f"{row['pyecore'] * 1000:11.2f}" if row["pyecore"] is not None else f"{'n/a':>11s}"
-        speed = f"{row['pyecore'] / row['ours']:12.1f}x" if row["pyecore"] is not None else f"{'':>13s}"
-        print(
-            f"{label[:40]:40s} {row['objects']:8d} {row['floor'] * 1000:9.2f} {row['ours'] * 1000:8.2f} "
-            f"{row['ours'] / row['floor']:6.1f}x {py} {speed} {row['note']}"
-        )
+def _report_read(report: Report, label: str, row: dict) -> None:
+    note = f"{row['objects']} objects" + (f"; {row['note']}" if row["note"] else "")
+    report.time(f"read {label}", row["ours"], row["floor"], against="lxml parse", note=note)
+    if row["pyecore"] is not None:
+        report.time(f"read {label}", row["ours"], row["pyecore"], against="pyecore")
 
 
-def main(argv: list[str]) -> int:
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="bench_aaxl2_export", description=__doc__.splitlines()[0])
     parser.add_argument("--objects", type=int, default=50_000)
     parser.add_argument("--repeat", type=int, default=3)
-    default_corpus = os.environ.get("ROSAADL_CORPUS") or str(
-        Path(__file__).resolve().parents[2] / "shared" / "corpus"
-    )
-    parser.add_argument("--corpus", default=default_corpus)
+    parser.add_argument("--corpus", default=str(corpus_dir()))
     args = parser.parse_args(argv)
     logging.disable(logging.WARNING)  # the exporter's warnings about corpus files are expected
     try:
@@ -292,21 +175,16 @@ def main(argv: list[str]) -> int:
 
 
 def _run(args) -> int:
-    from benchmarks.bench_aaxl2 import generate_instance
     from rosaadl.importers.aadl_text import read_files
     from rosaadl.importers.aaxl2 import loads_aaxl2, read_aaxl2
     from rosaadl.transforms.instantiate import instantiate
 
     corpus = Path(args.corpus)
-    metamodel_dir = corpus / "osate" / "metamodel"
+    metamodel_dir: Path | None = corpus / "osate" / "metamodel"
     if not (metamodel_dir / "instance.ecore").is_file():
         metamodel_dir = None
         print("OSATE metamodel not found: the pyecore reading column is left out", file=sys.stderr)
-    files = []
-    if (corpus / "osate" / "aaxl2").is_dir():
-        for path in sorted((corpus / "osate" / "aaxl2").rglob("*.aaxl2")):
-            if b"instance:SystemInstance" in path.read_bytes()[:800]:
-                files.append(path)
+    files = aaxl2_instance_files(corpus)
     export_rows: list[tuple[str, dict]] = []
     read_rows: list[tuple[str, dict]] = []
     for path in files:
@@ -319,15 +197,13 @@ def _run(args) -> int:
             export_rows.append((f"{short} (instantiated)", _export_row(system, args.repeat)))
     with tempfile.TemporaryDirectory() as tmp:
         generated = Path(tmp) / "generated_Instance.aaxl2"
-        generate_instance(generated, int(args.objects * 1.02))
+        write_aaxl2_instance(generated, int(args.objects * 1.02))
         imported = read_aaxl2(generated)
         export_rows.append(("generated instance file (imported)", _export_row(imported.model, 2)))
-        (Path(tmp) / "gen.aadl").write_text(generate_model(args.objects), encoding="utf-8")
+        (Path(tmp) / "gen.aadl").write_text(instantiable_package_text(args.objects), encoding="utf-8")
         workspace = read_files([Path(tmp) / "gen.aadl"], warnings=[])
-        start = time.process_time()
-        system = instantiate(workspace, "gen::top.impl")
-        instantiated_s = time.process_time() - start
-        row = _export_row(system, 2)
+        instantiated = best_of(lambda: instantiate(workspace, "gen::top.impl"), 1)
+        row = _export_row(instantiated.result, 2)
         export_rows.append(("generated AADL model (instantiated)", row))
         emv2 = [p for p in files if b"EMV2Instance" in p.read_bytes()[:2000]]
         for path in emv2:
@@ -337,25 +213,28 @@ def _run(args) -> int:
             )
         read_rows.append(("our export of the generated model", _read_row(row["data"], metamodel_dir, 2)))
         again = loads_aaxl2(row["data"])
-    _print_export(export_rows)
-    total_ours = sum(r["ours"] for _, r in export_rows)
-    total_floor = sum(r["floor"] for _, r in export_rows)
-    big = export_rows[-1][1]
-    print(
-        f"{'all exports':40s} {sum(r['objects'] for _, r in export_rows):8d} {'':6s} "
-        f"{total_ours * 1000:8.2f} {total_floor * 1000:9.2f} {total_ours / total_floor:6.1f}x"
+
+    report = Report("aaxl2_export")
+    for label, export in export_rows:
+        _report_export(report, label, export, detail=not label.startswith("generated"))
+    report.add(
+        "export, all cases",
+        sum(r["ours"].cpu for _, r in export_rows),
+        reference=sum(r["floor"].cpu for _, r in export_rows),
+        against="lxml write",
+        note=f"{sum(r['objects'] for _, r in export_rows)} objects, {len(export_rows)} cases",
     )
-    print(
-        f"generated model: {big['objects']} instance objects (instantiated in {instantiated_s:.2f} s), "
-        f"exported in {big['ours'] * 1000:.0f} ms with {big['sidecars']} sidecar(s): "
-        f"{big['ours'] / big['floor']:.1f}x the lxml floor, {big['pyecore'] / big['ours']:.1f}x faster "
-        "than pyecore's XMI writer on the same objects"
+    report.time(
+        "instantiate the generated AADL model",
+        instantiated,
+        note=f"{row['objects']} instance objects, exported with {row['sidecars']} sidecar(s)",
+        detail=True,
     )
-    print()
-    _print_read(read_rows)
+    for label, read in read_rows:
+        _report_read(report, label, read)
     print(f"(the generated export reads back with {len(again.warnings)} warning(s), era {again.era})")
-    return 0
+    return report.finish()
 
 
 if __name__ == "__main__":
-    raise SystemExit(main(sys.argv[1:]))
+    raise SystemExit(main())

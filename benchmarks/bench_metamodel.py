@@ -5,7 +5,9 @@ Side by side in one run:
   * our dynamic metamodel (``metamodels/*.ecore`` loaded by pyecore, the shipped choice);
   * static classes generated from the same ``.ecore`` by pyecoregen (the alternative).
 
-Each phase runs in its own subprocess so that its peak memory (max RSS) is its own.
+The objects are ``benchmarks.generators.instances.flat_instance``. Each phase runs in its own
+subprocess so that its peak memory (the whole phase process's, ``harness.process_peak_mib``) is
+its own; its time is one call measured by ``harness.best_of``.
 Usage: ``python -m benchmarks.bench_metamodel [--objects N]``.
 """
 
@@ -14,14 +16,17 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-PER_UNIT = 11  # objects made per component instance (see _build)
+from benchmarks.generators.instances import FLAT_CLASSES, flat_instance
+from benchmarks.harness import Report, best_of, process_peak_mib
+
+__all__ = ["main"]
+
+PHASES = ("build", "save-xmi", "save-json", "load-xmi", "load-json")
 
 
 def _static_package(workdir: Path):
@@ -43,42 +48,9 @@ def _classes(mode: str, workdir: Path):
 
         mm = metamodels.load().aadl
         get = mm.getEClassifier
-        return mm, {n: get(n) for n in _NAMES}
+        return mm, {n: get(n) for n in FLAT_CLASSES}
     pkg = _static_package(workdir)
-    return pkg, {n: getattr(pkg, n) for n in _NAMES}
-
-
-_NAMES = (
-    "SystemInstance",
-    "ComponentInstance",
-    "FeatureInstance",
-    "ConnectionInstance",
-    "PropertyAssociation",
-    "ModalPropertyValue",
-    "IntegerValue",
-)
-
-
-def _build(classes: dict, objects: int):
-    C = classes
-    units = max(1, objects // PER_UNIT)
-    root = C["SystemInstance"](name="top")
-    for i in range(units):
-        comp = C["ComponentInstance"](name=f"t{i}")
-        root.componentInstances.append(comp)
-        feats = [C["FeatureInstance"](name=f"p{j}") for j in range(3)]
-        comp.featureInstances.extend(feats)
-        for prop, value in (("Timing_Properties::Period", 33333), ("Timing_Properties::Deadline", 30000)):
-            pa = C["PropertyAssociation"](property=prop)
-            mv = C["ModalPropertyValue"]()
-            mv.value = C["IntegerValue"](value=value, unit="us")
-            pa.ownedValues.append(mv)
-            comp.ownedPropertyAssociations.append(pa)
-        conn = C["ConnectionInstance"](name=f"t{i}.p0 -> t{i}.p1")
-        conn.source = feats[0]
-        conn.destination = feats[1]
-        root.connectionInstances.append(conn)
-    return root, units * PER_UNIT + 1
+    return pkg, {n: getattr(pkg, n) for n in FLAT_CLASSES}
 
 
 def _save(root, pkg, path: Path, kind: str) -> None:
@@ -95,69 +67,47 @@ def _save(root, pkg, path: Path, kind: str) -> None:
     res.save()
 
 
-def _load(pkg, path: Path):
+def _load(pkg, path: Path) -> int:
     from pyecore.resources import URI, ResourceSet
 
     rset = ResourceSet()
     rset.metamodel_registry[pkg.nsURI] = pkg
     res = rset.get_resource(URI(str(path)))
-    return res.contents[0]
+    return sum(1 for _ in res.contents[0].eAllContents()) + 1
+
+
+def _lxml(path: Path) -> int:
+    from lxml import etree
+
+    return sum(1 for _ in etree.parse(str(path)).iter())
 
 
 def _phase(args) -> dict:
     workdir = Path(args.workdir)
     if args.phase == "lxml":
-        from lxml import etree
-
-        path = workdir / "dynamic.xmi"
-        start = time.perf_counter()
-        tree = etree.parse(str(path))
-        count = sum(1 for _ in tree.iter())
-        seconds = time.perf_counter() - start
-        return {"seconds": seconds, "objects": count}
-    pkg, classes = _classes(args.mode, workdir)
-    start = time.perf_counter()
-    if args.phase == "build":
-        _, count = _build(classes, args.objects)
-    elif args.phase.startswith("save"):
-        root, count = _build(classes, args.objects)
-        start = time.perf_counter()
-        _save(root, pkg, workdir / f"{args.mode}.{args.phase[5:]}", args.phase[5:])
-    elif args.phase.startswith("load"):
-        root = _load(pkg, workdir / f"{args.mode}.{args.phase[5:]}")
-        count = sum(1 for _ in root.eAllContents()) + 1
+        timing = best_of(lambda: _lxml(workdir / "dynamic.xmi"), 1, memory=False)
+        count = timing.result
     else:
-        raise SystemExit(f"unknown phase {args.phase}")
-    seconds = time.perf_counter() - start
-    return {"seconds": seconds, "objects": count}
-
-
-def _peak_mb() -> float:
-    """This process's peak resident memory. ``VmHWM`` belongs to the process image, so it starts
-    afresh at exec; ``ru_maxrss`` would carry the parent's high-water mark into the child."""
-    try:
-        for line in Path("/proc/self/status").read_text().splitlines():
-            if line.startswith("VmHWM:"):
-                return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        pkg, classes = _classes(args.mode, workdir)
+        if args.phase == "build":
+            timing = best_of(lambda: flat_instance(classes, args.objects), 1, memory=False)
+            _, count = timing.result
+        elif args.phase.startswith("save"):
+            root, count = flat_instance(classes, args.objects)
+            kind = args.phase[5:]
+            timing = best_of(lambda: _save(root, pkg, workdir / f"{args.mode}.{kind}", kind), 1, memory=False)
+        elif args.phase.startswith("load"):
+            path = workdir / f"{args.mode}.{args.phase[5:]}"
+            timing = best_of(lambda: _load(pkg, path), 1, memory=False)
+            count = timing.result
+        else:
+            raise SystemExit(f"unknown phase {args.phase}")
+    return {"cpu": timing.cpu, "wall": timing.wall, "objects": count}
 
 
 def _run_phase(phase: str, mode: str, objects: int, workdir: Path) -> dict:
-    cmd = [
-        sys.executable,
-        "-m",
-        "benchmarks.bench_metamodel",
-        "--phase",
-        phase,
-        "--mode",
-        mode,
-        "--objects",
-        str(objects),
-        "--workdir",
-        str(workdir),
-    ]
+    cmd = [sys.executable, "-m", "benchmarks.bench_metamodel", "--phase", phase, "--mode", mode]
+    cmd += ["--objects", str(objects), "--workdir", str(workdir)]
     root = Path(__file__).resolve().parent.parent
     out = subprocess.run(cmd, check=True, capture_output=True, text=True, cwd=root)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -173,7 +123,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.phase:
         result = _phase(args)
-        result["max_rss_mb"] = _peak_mb()
+        result["max_rss_mb"] = process_peak_mib()
         print(json.dumps(result))
         return 0
 
@@ -182,25 +132,32 @@ def main(argv: list[str] | None = None) -> int:
         workdir = Path(tmp)
         rows = []
         for mode in modes:
-            for phase in ("build", "save-xmi", "save-json", "load-xmi", "load-json"):
+            for phase in PHASES:
                 rows.append((mode, phase, _run_phase(phase, mode, args.objects, workdir)))
         floor = _run_phase("lxml", "dynamic", args.objects, workdir)
         size_mb = os.path.getsize(workdir / "dynamic.xmi") / 1e6
     print(f"metamodel benchmark: {args.objects} objects requested; XMI file {size_mb:.1f} MB")
-    print(
-        f"{'mode':8} {'phase':10} {'objects':>8} {'seconds':>8} {'obj/s':>10} {'x floor':>8} {'peak MB':>8}"
-    )
-    print(
-        f"{'lxml':8} {'parse-xmi':10} {floor['objects']:8d} {floor['seconds']:8.3f} "
-        f"{floor['objects'] / floor['seconds']:10.0f} {1.0:8.1f} {floor['max_rss_mb']:8.0f}"
+    report = Report("metamodel")
+    report.add(
+        "lxml parse-xmi",
+        floor["cpu"],
+        wall=floor["wall"],
+        peak_mib=floor["max_rss_mb"],
+        note=f"{floor['objects']} elements, {floor['objects'] / floor['cpu']:.0f}/s",
     )
     for mode, phase, r in rows:
-        ratio = r["seconds"] / floor["seconds"] if phase == "load-xmi" else float("nan")
-        print(
-            f"{mode:8} {phase:10} {r['objects']:8d} {r['seconds']:8.3f} "
-            f"{r['objects'] / r['seconds']:10.0f} {ratio:8.1f} {r['max_rss_mb']:8.0f}"
+        report.add(
+            f"{mode} {phase}",
+            r["cpu"],
+            reference=floor["cpu"] if phase == "load-xmi" else None,
+            against="lxml parse" if phase == "load-xmi" else "",
+            wall=r["wall"],
+            peak_mib=r["max_rss_mb"],
+            note=f"{r['objects']} objects, {r['objects'] / r['cpu']:.0f}/s",
+            detail=mode != "dynamic",
         )
-    return 0
+    print("(peak MiB: the resident memory of the phase's whole process)")
+    return report.finish()
 
 
 if __name__ == "__main__":

@@ -7,9 +7,9 @@ Side by side in one run:
     interval; the per-job response times are compared, and ours must be at least 20x faster;
   * a long simulation (many jobs) for throughput.
 
-Times are CPU seconds of this process (time.process_time), so that other work on the machine
-does not blur them; each simulator runs in its own phase (garbage collected in between) so that
-neither pays for the other's garbage, and the best of a few alternating rounds is kept.
+Times are CPU seconds of this process (``benchmarks.harness``); each simulator runs in its own
+block (garbage collected before each call) so that neither pays for the other's garbage, and
+the best of a few alternating rounds is kept. The task sets come from ``benchmarks.generators``.
 Usage: ``python -m benchmarks.bench_scheduling [--tasks N] [--sets S] [--rounds R]``.
 """
 
@@ -17,177 +17,106 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import gc
 import io
-import random
-import time
-from fractions import Fraction
+import statistics
 
-from rosaadl.analysis.schedulability import rate_monotonic_priorities, response_times
+from benchmarks.generators.tasks import (
+    SIMSO_SCHEDULERS,
+    long_run_tasks,
+    random_rta_tasks,
+    random_simulation_sets,
+    simso_model,
+    simso_response_times,
+)
+from benchmarks.harness import Goal, Report, alternate, best_of
+from rosaadl.analysis.schedulability import response_times
 from rosaadl.analysis.simulation import simulate
 from rosaadl.analysis.tasks import Scheduler, Task, TaskSet
 
-__all__ = ["main", "random_rta_tasks", "random_simulation_sets"]
+__all__ = ["main"]
 
 RTA_FLOOR_SECONDS = 0.5
 SIMSO_FACTOR_FLOOR = 20.0
-_PERIODS = [10, 20, 25, 40, 50, 100, 125, 200, 250, 500, 1000]
 
 
-def _uunifast(rng: random.Random, n: int, total: float) -> list[float]:
-    shares, left = [], total
-    for i in range(1, n):
-        nxt = left * rng.random() ** (1 / (n - i))
-        shares.append(left - nxt)
-        left = nxt
-    shares.append(left)
-    return shares
-
-
-def random_rta_tasks(n: int, utilization: float, seed: int = 1) -> list[Task]:
-    """``n`` tasks (periods 10 ms .. 1 s in us, UUniFast utilisations) with RM priorities."""
-    rng = random.Random(seed)
-    tasks = []
-    for i, u in enumerate(_uunifast(rng, n, utilization)):
-        period = int(10 ** rng.uniform(4, 6))
-        tasks.append(Task(f"t{i}", period, max(1, round(u * period))))
-    priorities = rate_monotonic_priorities(tasks)
-    return [Task(t.name, t.period, t.capacity, priority=priorities[t.name]) for t in tasks]
-
-
-def random_simulation_sets(count: int, seed: int = 11) -> list[tuple[Scheduler, list[Task]]]:
-    """Single-core sets of 5..15 tasks, U = 0.6 .. 0.95, alternately fixed priority (RM order)
-    and EDF; periods from a menu so that the hyperperiod stays at most 1 000."""
-    rng = random.Random(seed)
-    sets = []
-    for k in range(count):
-        n = rng.randint(5, 15)
-        tasks = []
-        for i, u in enumerate(_uunifast(rng, n, rng.uniform(0.6, 0.95))):
-            period = rng.choice(_PERIODS)
-            tasks.append(Task(f"T{i}", period, max(1, round(u * period))))
-        priorities = rate_monotonic_priorities(tasks)
-        tasks = [Task(t.name, t.period, t.capacity, priority=priorities[t.name]) for t in tasks]
-        sets.append((Scheduler.FIXED_PRIORITY if k % 2 else Scheduler.EARLIEST_DEADLINE_FIRST, tasks))
-    return sets
-
-
-def _simso_model(tasks: list[Task], scheduler: Scheduler, horizon: int):
-    from simso.configuration import Configuration
-    from simso.core import Model
-
-    configuration = Configuration()
-    configuration.duration = horizon * configuration.cycles_per_ms
-    for number, task in enumerate(tasks, start=1):
-        configuration.add_task(
-            name=task.name,
-            identifier=number,
-            period=task.period,
-            activation_date=task.offset,
-            wcet=task.capacity,
-            deadline=task.deadline,
-            abort_on_miss=False,
-            data={"priority": task.priority},
-        )
-    configuration.add_processor(name="cpu", identifier=1)
-    configuration.scheduler_info.clas = (
-        "simso.schedulers.EDF_mono"
-        if scheduler is Scheduler.EARLIEST_DEADLINE_FIRST
-        else "simso.schedulers.FP"
-    )
-    configuration.check_all()
-    return Model(configuration)
-
-
-def _bench_rta(n: int) -> tuple[float, int, float]:
-    tasks = random_rta_tasks(n, 0.9)
-    runs = []
-    bounds: dict = {}
-    for _ in range(3):
-        start = time.process_time()
-        bounds = response_times(tasks)
-        runs.append(time.process_time() - start)
-    met = sum(1 for t in tasks if bounds[t.name] is not None and bounds[t.name] <= t.deadline)
-    return min(runs), met, sorted(runs)[1]
-
-
-def _run_ours(sets: list[tuple[Scheduler, list[Task]]]) -> tuple[float, list]:
-    gc.collect()
-    start = time.process_time()
-    results = [
-        simulate(TaskSet.uniprocessor(tasks, scheduler), record_schedule=False) for scheduler, tasks in sets
-    ]
-    return time.process_time() - start, results
-
-
-def _run_simso(sets: list[tuple[Scheduler, list[Task]]], ours: list) -> tuple[float, list]:
-    gc.collect()
-    models = []
-    start = time.process_time()
-    with contextlib.redirect_stdout(io.StringIO()):
-        for (scheduler, tasks), mine in zip(sets, ours, strict=True):
-            model = _simso_model(tasks, scheduler, mine.horizons[("cpu", "")])
-            model.run_model()
-            models.append(model)
-    return time.process_time() - start, models
-
-
-def _bench_simso(count: int, rounds: int) -> dict:
-    """Best of ``rounds`` alternating rounds of each simulator (CPU time of this process)."""
-    sets = random_simulation_sets(count)
+def _simso_available() -> bool:
     try:
         import simso.core  # noqa: F401  (imports the removed ``imp`` module on Python >= 3.12)
-
-        available = True
     except ImportError:
-        available = False
-    our_times, simso_times = [], []
-    ours: list = []
-    models: list = []
-    for _ in range(rounds if available else 1):
-        seconds, ours = _run_ours(sets)
-        our_times.append(seconds)
-        if available:
-            seconds, models = _run_simso(sets, ours)
-            simso_times.append(seconds)
-            models_last = models
-    result = {
-        "sets": len(sets),
-        "jobs": sum(len(r.jobs) for r in ours),
-        "ours": min(our_times),
-        "simso": min(simso_times) if available else None,
-    }
-    if not available:
-        return result
+        return False
+    return True
+
+
+def _run_simso(sets: list[tuple[Scheduler, list[Task]]], horizons: list[int]) -> list:
+    models = []
+    with contextlib.redirect_stdout(io.StringIO()):
+        for (scheduler, tasks), horizon in zip(sets, horizons, strict=True):
+            model = simso_model(tasks, SIMSO_SCHEDULERS[scheduler], horizon)
+            model.run_model()
+            models.append(model)
+    return models
+
+
+def _differences(models: list, ours: list) -> tuple[int, int]:
+    """How many per-job response times both simulators give, and how many of them differ."""
     compared = differences = 0
-    for model, mine in zip(models_last, ours, strict=True):
-        cycles = model.cycles_per_ms
-        for task in model.results.tasks:
-            for job, record in zip(task.jobs, mine.jobs_of(task.name), strict=False):
-                if job.end_date is None or record.completion is None:
+    for model, mine in zip(models, ours, strict=True):
+        for name, theirs in simso_response_times(model).items():
+            for response, record in zip(theirs, mine.jobs_of(name), strict=False):
+                if response is None or record.completion is None:
                     continue
                 compared += 1
-                theirs = Fraction(job.end_date, cycles) - Fraction(job.activation_date)
-                differences += theirs != record.response_time
-    result["compared"], result["differences"] = compared, differences
-    return result
+                differences += response != record.response_time
+    return compared, differences
 
 
-def _bench_long() -> tuple[int, float]:
-    rng = random.Random(5)
-    tasks = []
-    for i, u in enumerate(_uunifast(rng, 20, 0.9)):
-        period = rng.choice([100, 200, 250, 400, 500, 1000, 1250, 2000, 2500, 5000])
-        tasks.append(Task(f"L{i}", period, max(1, round(u * period))))
-    taskset = TaskSet.uniprocessor(tasks, Scheduler.RATE_MONOTONIC)
-    gc.collect()
-    start = time.process_time()
-    result = simulate(taskset, horizon=200_000, record_schedule=True)
-    return len(result.jobs), time.process_time() - start
+def _simulators(report: Report, count: int, rounds: int) -> None:
+    sets = random_simulation_sets(count)
 
+    def ours() -> list:
+        return [
+            simulate(TaskSet.uniprocessor(tasks, scheduler), record_schedule=False)
+            for scheduler, tasks in sets
+        ]
 
-def _row(label: str, value: str, floor: str = "", verdict: str = "") -> None:
-    print(f"{label:36} {value:>12} {floor:>10} {verdict:>5}")
+    models: list = []  # SimSo's last run, kept for the comparison (as the results of ours)
+
+    def simso() -> None:
+        models[:] = []  # let the last run go first
+        models.extend(_run_simso(sets, horizons))
+
+    if not _simso_available():
+        timing = best_of(ours, 1)
+        results, simso_timing = timing.result, None
+    else:
+        results = ours()
+        horizons = [r.horizons[("cpu", "")] for r in results]
+        timings = alternate({"ours": ours, "simso": simso}, rounds)
+        timing, simso_timing = timings["ours"], timings["simso"]
+    jobs = sum(len(r.jobs) for r in results)
+    if simso_timing is None:
+        report.time(
+            "simulation: random sets", timing, against="SimSo (not installed)", note=f"{len(sets)} sets"
+        )
+        print("  (SimSo runs on Python < 3.12: pip install simso==0.8.5, which pulls SimPy 2.3.1)")
+    else:
+        report.time(
+            "simulation: random sets",
+            timing,
+            simso_timing,
+            against="SimSo",
+            goal=Goal(1 / SIMSO_FACTOR_FLOOR, on="ratio", says=f"{SIMSO_FACTOR_FLOOR:.0f}x faster"),
+            note=f"{len(sets)} sets, {jobs} jobs, {simso_timing.cpu / timing.cpu:.1f}x faster",
+        )
+        compared, differences = _differences(models, results)
+        report.add(
+            "simulation: per-job responses unlike SimSo's",
+            differences,
+            "",
+            goal=Goal(0),
+            note=f"of {compared} compared",
+        )
+    report.add("simulation: jobs per second", jobs / timing.cpu, "jobs/s", detail=True)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -196,48 +125,27 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--sets", type=int, default=40, help="random task sets simulated by both")
     parser.add_argument("--rounds", type=int, default=3, help="alternating rounds (best one kept)")
     args = parser.parse_args(argv)
-    failed = False
+    report = Report("scheduling")
 
-    best, met, median = _bench_rta(args.tasks)
-    ok = best < RTA_FLOOR_SECONDS
-    failed |= not ok
-    _row("measure", "value", "floor", "")
-    _row(
-        f"RTA, {args.tasks} tasks (CPU, best of 3)",
-        f"{best:.3f} s",
-        f"{RTA_FLOOR_SECONDS} s",
-        "ok" if ok else "FAIL",
+    tasks = random_rta_tasks(args.tasks, 0.9)
+    rta = best_of(lambda: response_times(tasks), 3)
+    bounds = rta.result
+    met = sum(1 for t in tasks if bounds[t.name] is not None and bounds[t.name] <= t.deadline)
+    report.time(
+        f"RTA, {args.tasks} tasks",
+        rta,
+        goal=Goal(RTA_FLOOR_SECONDS),
+        note=f"median of 3 {statistics.median(rta.cpu_calls):.3f} s; {met} tasks meet their deadline",
     )
-    _row("RTA, median of 3", f"{median:.3f} s")
-    _row("RTA, tasks meeting their deadline", str(met))
 
-    sim = _bench_simso(args.sets, args.rounds)
-    sets, jobs = sim["sets"], sim["jobs"]
-    _row(f"ours: {sets} sets, {jobs} jobs", f"{sim['ours']:.3f} s")
-    _row("ours: jobs per second", f"{jobs / sim['ours']:.0f}")
-    if sim["simso"] is None:
-        _row("SimSo: same sets", "not installed", "", "skip")
-        print("  (SimSo runs on Python < 3.12: pip install simso==0.8.5, which pulls SimPy 2.3.1)")
-    else:
-        factor = sim["simso"] / sim["ours"]
-        ok = factor >= SIMSO_FACTOR_FLOOR
-        failed |= not ok or sim["differences"] != 0
-        _row("SimSo: same sets", f"{sim['simso']:.3f} s")
-        _row(
-            "ours faster than SimSo by",
-            f"{factor:.1f}x",
-            f"{SIMSO_FACTOR_FLOOR:.0f}x",
-            "ok" if ok else "FAIL",
-        )
-        _row("per-job response times compared", str(sim["compared"]))
-        _row(
-            "... of which different", str(sim["differences"]), "0", "ok" if not sim["differences"] else "FAIL"
-        )
+    _simulators(report, args.sets, args.rounds)
 
-    jobs, seconds = _bench_long()
-    _row(f"long run: {jobs} jobs, with schedule", f"{seconds:.3f} s")
-    _row("long run: jobs per second", f"{jobs / seconds:.0f}")
-    return 1 if failed else 0
+    taskset = TaskSet.uniprocessor(long_run_tasks(), Scheduler.RATE_MONOTONIC)
+    long = best_of(lambda: simulate(taskset, horizon=200_000, record_schedule=True), 1)
+    jobs = len(long.result.jobs)
+    report.time("simulation: long run, with schedule", long, note=f"{jobs} jobs")
+    report.add("simulation: long run, jobs per second", jobs / long.cpu, "jobs/s")
+    return report.finish()
 
 
 if __name__ == "__main__":

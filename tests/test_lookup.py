@@ -4,6 +4,12 @@ from __future__ import annotations
 
 import pytest
 
+from benchmarks.generators.declarative import (
+    deadline_definition,
+    period_definition,
+    processor_binding_definition,
+    time_units,
+)
 from rosaadl import model
 from rosaadl.errors import ModelError
 from rosaadl.lookup import PropertyLookup, accepts
@@ -40,14 +46,7 @@ def _property_sets():
         "PropertySet",
         name="AADL_Project",
         ownedPropertyTypes=[
-            new(
-                "UnitsType",
-                name="Time_Units",
-                ownedLiterals=[
-                    new("UnitLiteral", name="us"),
-                    new("UnitLiteral", name="ms", baseUnit="us", factor=new("IntegerValue", value=1000)),
-                ],
-            ),
+            time_units("us", "ms"),
             time,
             new("RangeType", name="Time_Range", numberType="AADL_Project::Time"),
         ],
@@ -60,15 +59,8 @@ def _property_sets():
         "PropertySet",
         name="Timing_Properties",
         ownedProperties=[
-            new("Property", name="Period", inherit=True, type="AADL_Project::Time", appliesTo=all_components),
-            new(
-                "Property",
-                name="Deadline",
-                inherit=True,
-                type="AADL_Project::Time",
-                defaultValue=new("NamedValue", name="Timing_Properties::Period"),
-                appliesTo=all_components,
-            ),
+            period_definition(all_components),
+            deadline_definition(all_components),
             new(
                 "Property",
                 name="Compute_Execution_Time",
@@ -111,13 +103,7 @@ def _property_sets():
         "PropertySet",
         name="Deployment_Properties",
         ownedProperties=[
-            new(
-                "Property",
-                name="Actual_Processor_Binding",
-                inherit=True,
-                ownedType=new("ListType", ownedElementType=new("ReferenceType")),
-                appliesTo=["thread", "process", "system"],
-            ),
+            processor_binding_definition(["thread", "process", "system"]),
             new(
                 "Property",
                 name="Source_Names",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from benchmarks.generators.declarative import dispatch_protocol_definition, period_definition, time_units
 from rosaadl import model
 from rosaadl.errors import ModelError, NameResolutionError
 from rosaadl.resolution import (
@@ -24,14 +25,7 @@ def _time_set() -> list:
         name="AADL_Project",
         sourceFile="AADL_Project.aadl",
         ownedPropertyTypes=[
-            new(
-                "UnitsType",
-                name="Time_Units",
-                ownedLiterals=[
-                    new("UnitLiteral", name="us"),
-                    new("UnitLiteral", name="ms", baseUnit="us", factor=new("IntegerValue", value=1000)),
-                ],
-            ),
+            time_units("us", "ms"),
             new("AadlInteger", name="Time", unitsType="AADL_Project::Time_Units"),
         ],
         ownedPropertyConstants=[
@@ -48,26 +42,13 @@ def _time_set() -> list:
         name="Timing_Properties",
         withs=["AADL_Project"],
         ownedProperties=[
-            new("Property", name="Period", inherit=True, type="AADL_Project::Time", appliesTo=["thread"]),
+            period_definition(["thread"]),
         ],
     )
     thread = new(
         "PropertySet",
         name="Thread_Properties",
-        ownedProperties=[
-            new(
-                "Property",
-                name="Dispatch_Protocol",
-                ownedType=new(
-                    "EnumerationType",
-                    ownedLiterals=[
-                        new("EnumerationLiteral", name="Periodic"),
-                        new("EnumerationLiteral", name="Sporadic"),
-                    ],
-                ),
-                appliesTo=["thread"],
-            )
-        ],
+        ownedProperties=[dispatch_protocol_definition(["thread"])],
     )
     return [project, timing, thread]
 

@@ -14,6 +14,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from benchmarks.generators.tasks import simso_model, simso_response_times
 from rosaadl.analysis.schedulability import (
     analyze_schedulability,
     blocking_times,
@@ -386,36 +387,10 @@ def test_fast_path_and_general_engine_agree(tasks, scheduler, preemptive):
 
 
 def _simso_responses(tasks: list[Task], scheduler: str, horizon: int) -> dict[str, list]:
-    from simso.configuration import Configuration
-    from simso.core import Model
-
-    configuration = Configuration()
-    configuration.duration = horizon * configuration.cycles_per_ms
-    for number, task in enumerate(tasks, start=1):
-        configuration.add_task(
-            name=task.name,
-            identifier=number,
-            period=task.period,
-            activation_date=task.offset,
-            wcet=task.capacity,
-            deadline=task.deadline,
-            abort_on_miss=False,
-            data={"priority": task.priority},
-        )
-    configuration.add_processor(name="cpu", identifier=1)
-    configuration.scheduler_info.clas = scheduler
-    configuration.check_all()
-    simulation = Model(configuration)
+    simulation = simso_model(tasks, scheduler, horizon)
     with contextlib.redirect_stdout(io.StringIO()):
         simulation.run_model()
-    cycles = configuration.cycles_per_ms
-    return {
-        task.name: [
-            None if job.end_date is None else Fraction(job.end_date, cycles) - Fraction(job.activation_date)
-            for job in task.jobs
-        ]
-        for task in simulation.results.tasks
-    }
+    return simso_response_times(simulation)
 
 
 def _random_sets(seed: int, count: int) -> list[list[Task]]:

@@ -16,7 +16,8 @@ XML against the same metamodel:
 
 pyecore cannot load these files as it comes (OSATE's primitive data types ``Integer``, ``Real``
 and ``Boolean`` have no Python conversion, and the enumerations are written with their Java
-literals), so the resource set is patched for exactly that and nothing else. Files that hold
+literals), so the resource set is patched for exactly that and nothing else
+(``benchmarks.generators.osate``, shared with the ``.aaxl2`` benchmarks). Files that hold
 EMV2 annex instances are loaded with the optional ``EMV2Instance.ecore``/``ErrorModel.ecore``
 beside the core metamodels.
 """
@@ -24,87 +25,28 @@ beside the core metamodels.
 from __future__ import annotations
 
 import io
-import re
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
 from lxml import etree
-from pyecore.ecore import EClass, EDataType, EEnum, EReference
+from pyecore.ecore import EClass, EEnum, EReference
 from pyecore.resources import URI, ResourceSet
 from pyecore.resources.xmi import XMIResource
+
+from benchmarks.generators.osate import osate_metamodels
 
 __all__ = ["Conformance", "check", "resource_set"]
 
 XMI = "http://www.omg.org/XMI"
 XSI = "http://www.w3.org/2001/XMLSchema-instance"
 EMV2_INSTANCE = "http://www.osate.org/EMV2Instance"
-_JAVA_LITERALS = {"plus": "+", "minus": "-"}
-_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?|NaN|Infinity)\Z")
-
-
-def _java_literal(name: str) -> str:
-    """``inOut`` → ``in out``, ``threadGroup`` → ``thread group``, ``plus`` → ``+``."""
-    return _JAVA_LITERALS.get(name) or re.sub(r"(?<!^)(?=[A-Z])", " ", name).lower()
-
-
-def _integer(text: str) -> int:
-    return int(text)
-
-
-def _real(text: str) -> float:
-    if not _NUMBER.match(text.strip()):
-        raise ValueError(text)
-    return float(text)
-
-
-def _boolean(text: str) -> bool:
-    if text not in ("true", "false"):
-        raise ValueError(text)
-    return text == "true"
-
-
-# OSATE's primitive data types (Java long, double, boolean): pyecore keeps their values as text,
-# which its own type check then refuses; String needs nothing
-_CONVERSIONS = {"Integer": _integer, "Real": _real, "Boolean": _boolean}
-
-
-def _patch(package) -> None:
-    """pyecore conversions for OSATE's numeric data types, Java literals for its enumerations."""
-    for classifier in package.eClassifiers:
-        if isinstance(classifier, EEnum):
-            by_text = {}
-            for literal in classifier.eLiterals:
-                by_text[literal.name] = literal
-                by_text[_java_literal(literal.name)] = literal
-            classifier.from_string = by_text.__getitem__
-        elif isinstance(classifier, EDataType) and classifier.name in _CONVERSIONS:
-            classifier.from_string = _CONVERSIONS[classifier.name]
-            classifier.to_string = str
 
 
 @cache
 def _packages(metamodel_dir: str, with_emv2: bool) -> tuple:
     """(ResourceSet, {nsURI: EPackage}) with OSATE's metamodels, patched (one per process)."""
-    folder = Path(metamodel_dir)
-    rset = ResourceSet()
-    packages = {}
-    for name in ("aadl2.ecore", "instance.ecore"):
-        package = rset.get_resource(URI(str(folder / name))).contents[0]
-        rset.metamodel_registry[package.nsURI] = package
-        packages[package.nsURI] = package
-    if with_emv2:
-        optional = folder / "optional"
-        rset.uri_mapper["platform:/resource/org.osate.aadl2/model"] = str(folder)
-        rset.uri_mapper["../../org.osate.aadl2/model"] = str(folder)
-        rset.uri_mapper["../../org.osate.xtext.aadl2.errormodel/model/generated"] = str(optional)
-        for name in ("ErrorModel.ecore", "EMV2Instance.ecore"):
-            package = rset.get_resource(URI(str(optional / name))).contents[0]
-            rset.metamodel_registry[package.nsURI] = package
-            packages[package.nsURI] = package
-    for package in packages.values():
-        _patch(package)
-    return rset, packages
+    return osate_metamodels(Path(metamodel_dir), with_emv2=with_emv2)
 
 
 def resource_set(metamodel_dir: Path, *, with_emv2: bool = False) -> ResourceSet:

@@ -20,7 +20,6 @@
 
 from __future__ import annotations
 
-import hashlib
 import logging
 import re
 from dataclasses import dataclass
@@ -31,6 +30,7 @@ from corpus_cases import OSATE_INSTANCE_DIRS
 from lxml import etree
 from osate_conformance import check
 
+from benchmarks.generators.corpus import aadl_sources
 from rosaadl import model
 from rosaadl.exporters.aadl_text import unit_file_name
 from rosaadl.exporters.aaxl2 import export_aaxl2
@@ -261,17 +261,6 @@ def test_import_export_import_gives_the_same_instance(corpus: Path, short: str) 
 # ----------------------------------------------------------------------------- the oracle
 
 
-def _sources(folder: Path) -> list[Path]:
-    seen, out = set(), []
-    for path in sorted(folder.rglob("*")):
-        if path.suffix.lower() in (".aadl", ".aadl2") and path.is_file():
-            digest = hashlib.sha1(path.read_bytes()).hexdigest()
-            if digest not in seen:  # the same file copied twice (gtse-atsv-tier0)
-                seen.add(digest)
-                out.append(path)
-    return out
-
-
 def _unit_at(uri: str, base: Path, workspace):
     """The unit of ``workspace`` read from the file ``uri`` (relative to ``base``; a path that is
     not in the corpus, such as gtse-atsv-tier0's, by its file name when one source has it)."""
@@ -424,7 +413,7 @@ def test_oracle_our_instantiation_exported_matches_osate(corpus: Path, short: st
     caplog.set_level(logging.ERROR)
     path = _instance_file(corpus, short)
     text = path.read_text(encoding="ascii")
-    workspace = read_files(_sources(corpus / "osate" / "aaxl2" / short), warnings=[], check=False)
+    workspace = read_files(aadl_sources(corpus / "osate" / "aaxl2" / short), warnings=[], check=False)
     root, legacy = _root_of(path, text, workspace)
     system = instantiate(workspace, root, strict=False, compatibility="osate-2.0" if legacy else "current")
     result = export_aaxl2(system)

@@ -4,12 +4,13 @@ LALR front end builds from the same grammar; every corpus file parses."""
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pytest
-from aadl_syntax_helpers import ROOT, aadl_syntax, find, parse
+from aadl_syntax_helpers import aadl_syntax, find, parse
 from lark import Token, Tree
+
+from benchmarks.generators.corpus import aadl_files, corpus_dir
 
 # Every construct of the grammar at least once (hand-written; also compared with lark's own
 # LALR front end, which must build exactly the same trees).
@@ -220,18 +221,9 @@ def test_kitchen_sink_matches_larks_own_parser(lark_front_end) -> None:
 # --------------------------------------------------------------------------- real-world corpus
 
 
-def _corpus_dir() -> Path:
-    env = os.environ.get("ROSAADL_CORPUS")
-    return Path(env) if env else ROOT.parent / "shared" / "corpus"
-
-
 EXPECTED_CORPUS_FILES = 120
-CORPUS = _corpus_dir()
-CORPUS_FILES = (
-    sorted(p for p in CORPUS.rglob("*") if p.is_file() and p.suffix.lower() in (".aadl", ".aadl2"))
-    if CORPUS.is_dir()
-    else []
-)
+CORPUS = corpus_dir()
+CORPUS_FILES = aadl_files(CORPUS)
 NO_CORPUS = f"real-world corpus not found at {CORPUS} (set ROSAADL_CORPUS to its folder)"
 
 

@@ -10,6 +10,7 @@ import pytest
 from corpus_cases import OSATE_DECLARATIVE_DIRS, OSATE_INSTANCE_DIRS
 from lxml import etree
 
+from benchmarks.generators.aaxl2 import write_aaxl2_instance
 from rosaadl import metamodels, model
 from rosaadl.errors import ImportFormatError, RosaadlError
 from rosaadl.importers import osate_eras
@@ -803,43 +804,9 @@ def test_fast_objects_behave_like_pyecore_objects(tmp_path: Path) -> None:
     assert model.model_differences(result.model, again) == []
 
 
-def _bench_module():
-    import importlib.util
-
-    source = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_aaxl2.py"
-    spec = importlib.util.spec_from_file_location("bench_aaxl2_under_test", source)
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
-    return bench
-
-
-def test_benchmark_gives_ours_as_many_calls_as_the_floor_in_each_round() -> None:
-    # the bests are minima: a side given more calls would have more draws at a low time
-    import types
-
-    calls = {"floor": 0, "ours": 0}
-
-    def floor() -> None:
-        calls["floor"] += 1
-        sum(range(2_000))
-
-    def ours() -> None:  # ten times the floor: a time budget per block would give it fewer calls
-        calls["ours"] += 1
-        sum(range(20_000))
-
-    bench = _bench_module()
-    # the full collection before each call is not what is tested here (and slow in a test process)
-    bench.gc = types.SimpleNamespace(collect=lambda: None)
-    best = bench._best_pair(floor, ours, repeat=5, min_seconds=0.002)
-    assert calls["floor"] > 4 * 5 and calls["ours"] == calls["floor"]
-    assert 0 < best["floor"] < best["ours"]
-
-
 def test_generated_benchmark_file_imports_with_the_expected_count(tmp_path: Path) -> None:
-    generate_instance = _bench_module().generate_instance
-
     path = tmp_path / "gen_Instance.aaxl2"
-    expected = generate_instance(path, objects=3000)
+    expected = write_aaxl2_instance(path, objects=3000)
     result = read_aaxl2(path)
     assert sum(1 for _ in model.walk(result.model)) == expected
     thread = model.find_instance(result.root, "proc1.t3")

@@ -11,6 +11,12 @@ import pytest
 from corpus_cases import OSATE_INSTANCE_DIRS
 from lxml import etree
 
+from benchmarks.generators.declarative import (
+    deadline_definition,
+    period_definition,
+    processor_binding_definition,
+    time_units,
+)
 from rosaadl import model
 from rosaadl.errors import ModelError, NameResolutionError, UsageError
 from rosaadl.lookup import Factory, PropertyLookup
@@ -102,46 +108,25 @@ def cimpl(name, category, subs=(), conns=(), props=(), modes=(), flows=(), e2e=(
 
 
 def property_sets():
-    units = new(
-        "UnitsType",
-        name="Time_Units",
-        ownedLiterals=[
-            new("UnitLiteral", name="us"),
-            new("UnitLiteral", name="ms", baseUnit="us", factor=new("IntegerValue", value=1000)),
-        ],
-    )
     project = new(
         "PropertySet",
         name="AADL_Project",
-        ownedPropertyTypes=[units, new("AadlInteger", name="Time", unitsType="AADL_Project::Time_Units")],
+        ownedPropertyTypes=[
+            time_units("us", "ms"),
+            new("AadlInteger", name="Time", unitsType="AADL_Project::Time_Units"),
+        ],
     )
     components = ["thread", "thread group", "process", "system", "device", "virtual processor"]
     timing = new(
         "PropertySet",
         name="Timing_Properties",
-        ownedProperties=[
-            new("Property", name="Period", inherit=True, type="AADL_Project::Time", appliesTo=components),
-            new(
-                "Property",
-                name="Deadline",
-                inherit=True,
-                type="AADL_Project::Time",
-                defaultValue=new("NamedValue", name="Timing_Properties::Period"),
-                appliesTo=components,
-            ),
-        ],
+        ownedProperties=[period_definition(components), deadline_definition(components)],
     )
     deployment = new(
         "PropertySet",
         name="Deployment_Properties",
         ownedProperties=[
-            new(
-                "Property",
-                name="Actual_Processor_Binding",
-                inherit=True,
-                ownedType=new("ListType", ownedElementType=new("ReferenceType")),
-                appliesTo=["thread", "process", "system"],
-            ),
+            processor_binding_definition(["thread", "process", "system"]),
             new(
                 "Property",
                 name="Actual_Connection_Binding",
