@@ -49,6 +49,7 @@ def _pyecore(metamodel_dir: Path, path: Path, rounds: int) -> Timing:
         lambda rset: rset.get_resource(URI(str(path))),
         rounds,
         setup=lambda: osate_metamodels(metamodel_dir)[0],
+        keep=False,
     )
 
 
@@ -60,7 +61,7 @@ def _measure(path: Path, metamodel_dir: Path | None, repeat: int) -> dict:
     data = path.read_bytes()
     # the first parse of the file in the run, before the allocator holds memory freed by an
     # import of it: slower than the steady-state floor below, for large files by about half
-    first_parse = best_of(lambda: parse_xml_bytes(data, str(path)), 1)
+    first_parse = best_of(lambda: parse_xml_bytes(data, str(path)), 1, keep=False)
     result = loads_aaxl2(data, str(path))
     objects = sum(1 for _ in model.walk(result.model))
     del result

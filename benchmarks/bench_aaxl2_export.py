@@ -61,9 +61,9 @@ def _export_row(subject, repeat: int) -> dict:
     objects = sum(1 for _ in model.walk(system))
     return {
         "objects": objects,
-        "ours": best_of(lambda: export_aaxl2(subject), repeat),
-        "floor": best_of(_serialise(result.data), repeat),
-        "pyecore": best_of(lambda: model.dumps_xmi(system), 1 if objects > 10_000 else repeat),
+        "ours": best_of(lambda: export_aaxl2(subject), repeat, keep=False),
+        "floor": best_of(_serialise(result.data), repeat, keep=False),
+        "pyecore": best_of(lambda: model.dumps_xmi(system), 1 if objects > 10_000 else repeat, keep=False),
         "kib": len(result.data) // 1024,
         "sidecars": len(result.sidecars),
         "data": result.data,
@@ -116,7 +116,9 @@ def _pyecore_read(metamodel_dir: Path, data: bytes, with_emv2: bool, rounds: int
         resource.resource_set = rset
         resource.load()
 
-    return best_of(load, rounds, setup=lambda: osate_metamodels(metamodel_dir, with_emv2=with_emv2)[0])
+    return best_of(
+        load, rounds, setup=lambda: osate_metamodels(metamodel_dir, with_emv2=with_emv2)[0], keep=False
+    )
 
 
 def _read_row(data: bytes, metamodel_dir: Path | None, repeat: int, with_emv2: bool = False) -> dict:
@@ -125,8 +127,8 @@ def _read_row(data: bytes, metamodel_dir: Path | None, repeat: int, with_emv2: b
     from rosaadl.importers.aaxl2 import loads_aaxl2
 
     objects = sum(1 for _ in model.walk(loads_aaxl2(data).model))
-    floor = best_of(lambda: parse_xml_bytes(data, "<bench>"), repeat)
-    ours = best_of(lambda: loads_aaxl2(data), repeat)
+    floor = best_of(lambda: parse_xml_bytes(data, "<bench>"), repeat, keep=False)
+    ours = best_of(lambda: loads_aaxl2(data), repeat, keep=False)
     pyecore, note = None, ""
     if metamodel_dir is not None:
         try:

@@ -145,16 +145,19 @@ def best_of(
     *,
     setup: Callable[[], Any] | None = None,
     memory: bool = True,
+    keep: bool = True,
 ) -> Timing:
     """Call ``action`` ``rounds`` times (at least once), each after ``gc.collect()``, and keep the
     best CPU and wall times and the last result (each round's result is let go before the next
     round); ``setup``, when given, is called before each round outside the
     measure and its result passed to ``action`` (what must not be timed: a fresh resource set,
-    say). ``memory=False`` leaves out the peak memory."""
+    say). ``memory=False`` leaves out the peak memory; ``keep=False`` lets the last result go
+    too, for timings kept in rows while the next inputs are measured (a model kept in a row would
+    be traversed by every ``gc.collect()`` after it, and slow down every measure that follows)."""
     timing = Timing()
     for _ in range(max(1, rounds)):
         args = () if setup is None else (setup(),)
-        timing._call(action, args, memory, keep=True)
+        timing._call(action, args, memory, keep=keep)
     return timing
 
 
