@@ -99,8 +99,8 @@ def osate_literal_href(w: Writer, info: TypeInfo, name: str, kind: str) -> str:
     eras = [pinned] if pinned else [ERA, *older_eras(info.set_name or "")]
     for era in eras:
         found, path = info, None
-        if info.era == era:
-            path = osate_eras.table(era).literal_path(info.set_name or "", info.table_name or "", name)
+        if info.table_name:  # the type of that name in the era's layout (a type keeps its name)
+            path = osate_eras.table(era).literal_path(info.set_name or "", info.table_name, name)
         if path is None:
             # this project's copy of the set may name or place the type differently
             searched = era_search(info.kind, (name,), (info.set_name or "", "AADL_Project"), era)

@@ -40,6 +40,9 @@ NAMESPACES = (
 #: OSATE's own packages (besides the property sets the era tables know) and where it keeps them.
 OSATE_PACKAGES = {
     "base_types": "platform:/plugin/org.osate.contribution.sei/resources/packages/Base_Types.aadl",
+    "physicalresources": (
+        "platform:/plugin/org.osate.contribution.sei/resources/packages/PhysicalResources.aadl"
+    ),
 }
 
 # an AADL identifier (what instance objects must be named), and an instance file name's stem

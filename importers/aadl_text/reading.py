@@ -175,8 +175,9 @@ def read_files(
     sorted order) into one ``AadlModel``.
 
     With ``include_library`` the component library of rosaadl (``library_files()``: the
-    predeclared property sets, SEI, Data_Model, Base_Types, ROS packages, hardware) is read
-    first; a user unit named like a library unit replaces it, with a warning.  With ``check``
+    predeclared property sets, the sets and packages OSATE's contribution plug-in ships, ROS
+    packages, hardware) is read first; a user unit named like a library unit replaces it, with
+    a warning.  With ``check``
     every name, unit and enumeration literal is resolved across all units
     (:class:`rosaadl.resolution.Resolver`, then units, enumeration literals and record fields
     of every property value against its property's type); every error found is reported in
