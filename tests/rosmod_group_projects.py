@@ -45,11 +45,8 @@ host_instance alpha
 host_instance beta
 {
     properties { username = "ubuntu"; }
-    nodes
-    {
-        node_instance tracking_1 { reference = "robot/tracking"; }
-        node_instance tracking_2 { reference = "robot/tracking"; }
-    }
+    nodes { node_instance tracking_1 { reference = "robot/tracking"; }
+            node_instance tracking_2 { reference = "robot/tracking"; } }
 }
 // ROS Group - Group_1
 group Group_1

@@ -113,63 +113,83 @@ def resolve_groups(
     for node in deployment.nodes:
         nodes.setdefault(node.name, node)
     listed: dict[int, Stmt] = {}  # port instance → the item that gave its group
-
-    def error(message: str, item: Stmt) -> None:
-        ctx.error(NameResolutionError(message, location=at(shown, item)))
-
-    for group, (node_name, inst_name, port_name), item in info.group_members:
-        path = "/".join((node_name, inst_name, port_name))
-        node = nodes.get(node_name)
-        if node is None:
-            error(f"group {group!r}: {path!r} names no node of deployment {deployment.name!r}", item)
-            continue
-        inst = next((i for i in node.componentInstances if i.name == inst_name), None)
-        if inst is None:
-            if not node.componentInstances and any(p.key == "reference" for p in node.properties):
-                continue  # a v0.2 node whose software node did not resolve: already reported
-            known = ", ".join(i.name for i in node.componentInstances) or "none"
-            error(
-                f"group {group!r}: node {node_name!r} has no component instance {inst_name!r} "
-                f"(its component instances: {known})",
-                item,
-            )
-            continue
-        comp = inst.component
-        if comp is None:
-            continue  # the instance's own ref did not resolve: already reported
-        if port_name not in {p.name for p in comp.ports}:
-            known = ", ".join(p.name for p in comp.ports) or "none"
-            error(
-                f"group {group!r}: {port_name!r} is not a port of component {comp.name!r} of "
-                f"{node_name}/{inst_name} (its ports: {known})",
-                item,
-            )
-            continue
-        port = next((p for p in inst.portInstances if port_of(p) == port_name), None)
-        if port is None:
-            if any(p.name == port_name for p in inst.portInstances):
-                error(
-                    f"group {group!r}: {path!r} would make a port instance {port_name!r}, but "
-                    f"{node_name}/{inst_name} has a port instance of that name for another port",
-                    item,
-                )
+    for group, parts, item in info.group_members:
+        path = "/".join(parts)
+        try:
+            port = _port_instance(nodes, deployment.name, group, parts, item, shown)
+            if port is None:
                 continue
-            port = new(
-                "PortInstance",
-                name=port_name,
-                port=f"{comp.name}/{port_name}",
-                line=item.line,
-                column=item.column,
-            )
-            inst.portInstances.append(port)
-        elif port.group is not None and (id(port) in listed or port.group != group):
-            earlier = listed.get(id(port))
-            line = earlier.line if earlier is not None else port.line
-            error(
-                f"group {group!r}: {path!r} is already in group {port.group!r} (line {line}); a port "
-                "instance has one group",
-                item,
-            )
+            if port.group is not None and (id(port) in listed or port.group != group):
+                earlier = listed.get(id(port))
+                raise NameResolutionError(
+                    f"group {group!r}: {path!r} is already in group {port.group!r} (line "
+                    f"{earlier.line if earlier is not None else port.line}); a port instance has one group",
+                    location=at(shown, item),
+                )
+        except NameResolutionError as exc:
+            ctx.error(exc)
             continue
         port.group = group
         listed[id(port)] = item
+
+
+def _port_instance(
+    nodes: dict[str, EObject],
+    deployment: str,
+    group: str,
+    parts: tuple[str, str, str],
+    item: Stmt,
+    shown: str,
+) -> EObject | None:
+    """The port instance ``node/instance/port`` names in ``group`` (made when the instance has none
+    for that port); None when an error already reported keeps it from resolving."""
+    node_name, inst_name, port_name = parts
+    path = "/".join(parts)
+    where = f"group {group!r}: "
+    node = nodes.get(node_name)
+    if node is None:
+        raise NameResolutionError(
+            f"{where}{path!r} names no node of deployment {deployment!r}", location=at(shown, item)
+        )
+    inst = next((i for i in node.componentInstances if i.name == inst_name), None)
+    if inst is None:
+        if not node.componentInstances and any(p.key == "reference" for p in node.properties):
+            return None  # a v0.2 node whose software node did not resolve: already reported
+        raise _unknown(
+            f"{where}node {node_name!r} has no component instance {inst_name!r}",
+            "component instances",
+            node.componentInstances,
+            item,
+            shown,
+        )
+    comp = inst.component
+    if comp is None:
+        return None  # the instance's own ref did not resolve: already reported
+    if port_name not in {p.name for p in comp.ports}:
+        raise _unknown(
+            f"{where}{port_name!r} is not a port of component {comp.name!r} of {node_name}/{inst_name}",
+            "ports",
+            comp.ports,
+            item,
+            shown,
+        )
+    port = next((p for p in inst.portInstances if port_of(p) == port_name), None)
+    if port is not None:
+        return port
+    if any(p.name == port_name for p in inst.portInstances):
+        raise NameResolutionError(
+            f"{where}{path!r} would make a port instance {port_name!r}, but {node_name}/{inst_name} "
+            "has a port instance of that name for another port",
+            location=at(shown, item),
+        )
+    port = new(
+        "PortInstance", name=port_name, port=f"{comp.name}/{port_name}", line=item.line, column=item.column
+    )
+    inst.portInstances.append(port)
+    return port
+
+
+def _unknown(message: str, what: str, known: list[EObject], item: Stmt, shown: str) -> NameResolutionError:
+    """An error at ``item``: ``message``, and the names ``known`` of ``what`` there are."""
+    names = ", ".join(k.name for k in known) or "none"
+    return NameResolutionError(f"{message} (its {what}: {names})", location=at(shown, item))

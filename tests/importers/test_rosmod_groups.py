@@ -50,7 +50,7 @@ def test_v02_group_blocks_give_each_port_its_group(tmp_path):
         ("group:Group_2", "sensing_2/sensor_i/pose_pub\ntracking_2/tracker_i/pose_sub"),
     ]
     port = project.deployments[0].nodes[2].componentInstances[0].portInstances[0]
-    assert (port.line, port.column) == (25, 5)  # where its path is written
+    assert (port.line, port.column) == (22, 5)  # where its path is written
 
 
 def test_both_forms_in_one_deployment(tmp_path):
