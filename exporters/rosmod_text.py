@@ -12,8 +12,15 @@ projects, which :func:`rosaadl.importers.rosmod_text.read_project` reads back:
 01-Software/pnp/<package>.<component>.<port>.pnp   "pnp:<port>" component settings
 02-Hardware/<hardware>.rhw           hosts (address, user, ssh key, paths, architecture, os)
 02-Hardware/snp/<hardware>[.<host>].snp            "snp" settings of a hardware model or host
-03-Deployment/<deployment>.rdp       using <hardware>; nodes, component instances, logging
+03-Deployment/<deployment>.rdp       using <hardware>; nodes, component instances, logging, groups
 ```
+
+A port instance's group is written as it was read (:mod:`rosaadl.importers.rosmod_text.groups`):
+inside the ``port_instance`` (``group = "G";``), or, for a group the deployment keeps as a
+``group:G`` property, as a top-level ``group G { <node>/<component instance>/<port> … }`` block
+after the nodes, its paths in the order of that property and then in model order. A port
+instance such a block makes when it is read (named after its port, ``ref`` ``<component>/<port>``)
+is written only in the block.
 
 The output is deterministic (model order, fixed layout), every file is made before the first
 one is written and each is written atomically; a name that cannot be written (not a ROSMOD
@@ -21,7 +28,8 @@ word, or a file name that would leave the output folder) is an :class:`ExportErr
 element, and nothing is written then.
 
 What v0.3 text cannot hold is left out, each with a warning: settings of projects, packages and
-deployments (v0.2 software nodes and host instances, WebGME containers and experiments),
+deployments (v0.2 software nodes and host instances, WebGME containers and experiments; a
+deployment's ``group:G`` settings are its group blocks),
 component settings other than ``<port or timer>.<key>``, ``abl:``/``pnp:`` files, WebGME
 scheduling schemes of components, operations, latching, networks, links and interfaces,
 nodes without a host. :func:`text_normal_form` gives the project as its written text reads
@@ -45,6 +53,7 @@ from rosaadl import fileio
 from rosaadl import model as _model
 from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, ExportError, Location
+from rosaadl.importers.rosmod_text.groups import GROUP_KEY, port_of
 
 __all__ = ["render_project", "write_project", "text_normal_form", "MARKER_TEXT"]
 
@@ -303,6 +312,54 @@ def _unique(items: Iterable[EObject], what: str, owner: EObject) -> None:
         seen.add(item.name)
 
 
+@dataclass
+class _GroupBlocks:
+    """The groups a deployment writes as top-level blocks, and how its port instances are written."""
+
+    settings: list[EObject]  # the deployment's "group:G" settings written as blocks
+    paths: dict[str, list[tuple[str, EObject]]]  # group → (path, port instance), in written order
+    members: set[int]  # the port instances of those groups: no "group =" of their own
+    implied: set[int]  # the members a block makes when it is read: not written as port_instance
+
+
+def _group_blocks(deployment: EObject) -> _GroupBlocks:
+    """The ``group:G`` settings of ``deployment`` that are written as blocks (see the module
+    documentation): a group name that is a ROSMOD word, with at least one port instance on a node
+    that is written, each the only one of its component instance for its port."""
+    listed: dict[str, list[str]] = {}
+    settings: dict[str, EObject] = {}
+    for prop in deployment.properties:
+        key = prop.key or ""
+        name = key[len(GROUP_KEY) :]
+        if key.startswith(GROUP_KEY) and _VALUE_WORD.match(name) and name not in listed:
+            listed[name] = (prop.value or "").split("\n")
+            settings[name] = prop
+    found: dict[str, list[tuple[str, EObject]]] = {name: [] for name in listed}
+    implied: set[int] = set()
+    for node in deployment.nodes:
+        if _host_ref(node) is None:
+            continue
+        for inst in node.componentInstances:
+            comp_name = inst.component.name if inst.component is not None else None
+            if comp_name is None and inst.componentRef:
+                comp_name = inst.componentRef.rpartition("/")[2]
+            stands_for = [port_of(p) for p in inst.portInstances]
+            for port in inst.portInstances:
+                port_name = port_of(port)
+                if port.group not in found or stands_for.count(port_name) > 1:
+                    continue
+                found[port.group].append((f"{node.name}/{inst.name}/{port_name}", port))
+                if port.name == port_name and port.port == f"{comp_name}/{port_name}":
+                    implied.add(id(port))
+    paths = {}
+    for name, members in found.items():
+        if members:
+            rank = {path: k for k, path in enumerate(listed[name])}
+            paths[name] = sorted(members, key=lambda m, r=rank: r.get(m[0], len(r)))
+    member_ids = {id(port) for members in paths.values() for _, port in members}
+    return _GroupBlocks([settings[name] for name in paths], paths, member_ids, implied & member_ids)
+
+
 # =========================================================================== rendering
 
 
@@ -459,8 +516,10 @@ class _Writer:
     # -- deployment
     def deployment(self, deployment: EObject) -> None:
         name = _stem(deployment.name, deployment, "the deployment")
+        groups = _group_blocks(deployment)
         for prop in deployment.properties:
-            self.plan.drop(prop, f"deployment {deployment.name!r}: setting {prop.key!r}")
+            if not any(prop is kept for kept in groups.settings):
+                self.plan.drop(prop, f"deployment {deployment.name!r}: setting {prop.key!r}")
         lines = ["/*", " * ROSMOD Deployment Model", " */", ""]
         using = _using(deployment)
         if using is not None:
@@ -468,10 +527,16 @@ class _Writer:
             lines += [f"// ROSMOD Hardware Model - {using}", f"using {shown};", ""]
         _unique(deployment.nodes, "node", deployment)
         for node in deployment.nodes:
-            lines += self.node(node)
+            lines += self.node(node, groups)
+        for group, members in groups.paths.items():
+            lines += [f"// ROSMOD Group - {group}", f"group {group}", "{"]
+            for path, port in members:
+                _word(port_of(port), port, "port")
+                lines.append(f"    {path}")
+            lines += ["}", ""]
         self.add(f"03-Deployment/{name}.rdp", "\n".join(lines))
 
-    def node(self, node: EObject) -> list[str]:
+    def node(self, node: EObject, groups: _GroupBlocks) -> list[str]:
         ref = _host_ref(node)
         if ref is None:
             self.plan.drop(node, f"node {node.name!r}: a v0.3 node needs a host and this one has none")
@@ -488,11 +553,11 @@ class _Writer:
         lines.append("  }")
         _unique(node.componentInstances, "component instance", node)
         for inst in node.componentInstances:
-            lines += self.instance(inst)
+            lines += self.instance(inst, groups)
         lines += ["}", ""]
         return lines
 
-    def instance(self, inst: EObject) -> list[str]:
+    def instance(self, inst: EObject, groups: _GroupBlocks) -> list[str]:
         name = _word(inst.name, inst, "component instance")
         ref = _component_ref(inst)
         if ref is None:
@@ -511,10 +576,12 @@ class _Writer:
         _unique(inst.portInstances, "port instance", inst)
         for port in inst.portInstances:
             port_name = _word(port.name, port, "port instance")
+            if id(port) in groups.implied:
+                continue  # its group block makes it
             items = []
             if port.port is not None:
                 items.append(f"ref = {_quote(port.port)};")
-            if port.group is not None:
+            if port.group is not None and id(port) not in groups.members:
                 items.append(f"group = {_quote(port.group)};")
             lines += [f"      port_instance {port_name}", "      {", *(f"\t{i}" for i in items), "      }"]
         lines.append("  }")
@@ -602,7 +669,8 @@ def text_normal_form(project: EObject) -> EObject:
     systems = {s.name: s for s in copy.systems}
     for deployment in copy.deployments:
         deployment.sourceFile = None
-        deployment.properties.clear()
+        groups = _group_blocks(deployment)
+        _as_group_blocks_read_back(deployment, groups)
         using = _using(deployment)
         deployment.systemName = using
         deployment.system = systems.get(using) if using is not None else None
@@ -623,3 +691,24 @@ def text_normal_form(project: EObject) -> EObject:
                 inst.properties.clear()
                 inst.properties.extend(inst_settings)
     return copy
+
+
+def _as_group_blocks_read_back(deployment: EObject, groups: _GroupBlocks) -> None:
+    """``deployment``'s settings and port instances as its written group blocks read back: the
+    ``group:G`` settings list their paths as written, and the port instances a block makes come
+    after the others of their component instance, in the order of the blocks."""
+    deployment.properties.clear()
+    deployment.properties.extend(groups.settings)
+    order: dict[int, int] = {}
+    for prop, members in zip(groups.settings, groups.paths.values(), strict=True):
+        prop.value = "\n".join(path for path, _ in members)
+        for _, port in members:
+            if id(port) in groups.implied:
+                order[id(port)] = len(order)
+    for node in deployment.nodes:
+        for inst in node.componentInstances:
+            made = sorted((p for p in inst.portInstances if id(p) in order), key=lambda p: order[id(p)])
+            if made:
+                kept = [p for p in inst.portInstances if id(p) not in order]
+                inst.portInstances.clear()
+                inst.portInstances.extend([*kept, *made])

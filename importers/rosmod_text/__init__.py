@@ -28,7 +28,8 @@ The modules, one idea each:
 * :mod:`.project` — the entry points: the files of a project, the dialect of each, the order
   of reading; :mod:`.summary` — the counts of a project;
 * :mod:`.v03`, :mod:`.v02`, :mod:`.v01`, :mod:`.v04` — one dialect each (their docstrings give
-  how each maps onto ``rosmod.ecore``);
+  how each maps onto ``rosmod.ecore``); :mod:`.groups` — the top-level ``group`` blocks of a
+  deployment (``group G { <node>/<component instance>/<port> … }``), beside ``group = "…";``;
 * :mod:`.blocks` — the tokenizer and the generic statement tree the block dialects share;
   :mod:`.statements` — values, names and model objects read from statements;
   :mod:`.files` — reading a file safely (:data:`~.files.MAX_FILE_BYTES`), side files;

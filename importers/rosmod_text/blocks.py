@@ -6,12 +6,19 @@ comments, CRLF line ends and double-quoted strings. :func:`tokenize` cuts a text
 their line and column; :func:`parse_blocks` builds the statement tree, iteratively, so that
 hostile nesting meets a located error and not Python's recursion limit. What a statement means
 is the business of the dialect modules (:mod:`.v03`, :mod:`.v02`, :mod:`.v01`).
+
+One form is not a statement tree: the top-level ``group NAME { a/b/c d/e/f }`` blocks of a
+deployment list names with no separator but white space (ROSMOD's ``Deployment.g4``: ``'group'
+group_id '{' (port)+ '}'``, ``port: IDENT``). :func:`parse_blocks` reads the blocks whose keyword
+it is given in ``listings`` that way: each item is a statement of one head and nothing else, the
+tokens written together without white space between them.
 """
 
 from __future__ import annotations
 
 import bisect
 import re
+from collections.abc import Collection
 from dataclasses import dataclass
 
 from rosaadl.errors import Location, ParseError
@@ -160,8 +167,12 @@ def is_punct(token: Token, text: str) -> bool:
     return token.kind == "punct" and token.text == text
 
 
-def parse_blocks(text: str, filename: str) -> list[Stmt]:
-    """Parse ``text`` into nested statements (iteratively: no recursion limit on hostile input)."""
+def parse_blocks(text: str, filename: str, *, listings: Collection[str] = ()) -> list[Stmt]:
+    """Parse ``text`` into nested statements (iteratively: no recursion limit on hostile input).
+
+    A top-level block whose keyword is one of ``listings`` holds a list of items (see the module
+    documentation), not statements.
+    """
     tokens = tokenize(text, filename)
     root: list[Stmt] = []
     stack: list[tuple[list[Stmt], Stmt | None, Token | None]] = [(root, None, None)]
@@ -217,6 +228,10 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
         elif stop.text == ";":
             body.append(Stmt(head, source=text))
             i += 1
+        elif stop.text == "{" and len(stack) == 1 and head[0].kind == "word" and head[0].text in listings:
+            stmt = Stmt(head, body=[], source=text)
+            body.append(stmt)
+            i = _listing(tokens, i + 1, stmt, stop, filename)
         elif stop.text == "{":
             stmt = Stmt(head, body=[], source=text)
             body.append(stmt)
@@ -241,3 +256,29 @@ def parse_blocks(text: str, filename: str) -> list[Stmt]:
             location=at(filename, brace),
         )
     return root
+
+
+def _listing(tokens: list[Token], i: int, stmt: Stmt, brace: Token, filename: str) -> int:
+    """The items of the listing block ``stmt`` from ``tokens[i]`` to its ``}``; the index after it."""
+    assert stmt.body is not None
+    items = stmt.body
+    n = len(tokens)
+    while i < n:
+        tok = tokens[i]
+        if is_punct(tok, "}"):
+            return i + 1
+        if tok.kind == "punct" and tok.text in "{=;":
+            raise ParseError(
+                f"unexpected {tok.text!r} in {stmt.key!r} (it lists names separated by white space, "
+                "one a line, and ends with '}')",
+                location=at(filename, tok),
+            )
+        if items and items[-1].head[-1].end == tok.start:  # written together: the same item
+            items[-1].head.append(tok)
+        else:
+            items.append(Stmt([tok], source=stmt.source))
+        i += 1
+    raise ParseError(
+        f"unclosed '{{' of {stmt.key!r}: expected '}}' before the end of the file",
+        location=at(filename, brace),
+    )

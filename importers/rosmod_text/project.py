@@ -21,7 +21,7 @@ from pyecore.ecore import EObject
 from rosaadl.arguments import checked, expect_path
 from rosaadl.errors import Diagnostic, ParseError
 from rosaadl.fileio import existing
-from rosaadl.importers.rosmod_text import v01, v02, v03, v04
+from rosaadl.importers.rosmod_text import groups, v01, v02, v03, v04
 from rosaadl.importers.rosmod_text.blocks import Stmt, at, parse_blocks
 from rosaadl.importers.rosmod_text.context import ImportContext, RosmodImportError
 from rosaadl.importers.rosmod_text.files import read_text, shown_path, side_files
@@ -133,7 +133,7 @@ def read_project(
         rel = layout.rel(dp_file)
         shown = layout.shown(rel)
         try:
-            stmts = parse_blocks(read_text(dp_file, shown), shown)
+            stmts = parse_blocks(read_text(dp_file, shown), shown, listings=groups.LISTINGS)
             deployment, info = _read_deployment(stmts, dp_file.stem, rel, shown, ctx)
             project.deployments.append(deployment)
             deployments.append((deployment, info))
@@ -145,6 +145,7 @@ def read_project(
     models = ProjectModels(systems, project.software, sw_info, software_failed, failed_systems)
     for deployment, info in deployments:
         resolve_deployment(deployment, info, models, ctx)
+        groups.resolve_groups(deployment, info, software_failed, ctx)
     if version is None:  # no software model: tell v0.2 from v0.3 by the hardware/deployment syntax
         legacy_dp = any(p.key.startswith("host_instance:") for d in project.deployments for p in d.properties)
         version = "0.2" if (legacy_hw or legacy_dp) else "0.3"
@@ -289,7 +290,8 @@ def _read_snp(layout: _Layout, systems: dict[str, EObject], ctx: ImportContext) 
 def _read_deployment(
     stmts: list[Stmt], name: str, rel: str, shown: str, ctx: ImportContext
 ) -> tuple[EObject, DeploymentInfo]:
-    """The ``Deployment`` of a ``.rdp`` file: ``using``, v0.3 ``node`` and v0.2 ``host_instance`` blocks."""
+    """The ``Deployment`` of a ``.rdp`` file: ``using``, v0.3 ``node``, v0.2 ``host_instance`` and
+    top-level ``group`` blocks."""
     deployment = new("Deployment", name=name, sourceFile=rel)
     info = DeploymentInfo(filename=shown)
     for stmt in stmts:
@@ -309,6 +311,8 @@ def _read_deployment(
                 deployment.nodes.append(v03.node(stmt, shown, info, ctx))
             elif stmt.keyword == "host_instance" and stmt.body is not None:
                 v02.host_instance(stmt, deployment, shown, info, ctx)
+            elif stmt.keyword == "group" and stmt.body is not None:
+                groups.read_group(stmt, deployment, shown, info, ctx)
             else:
                 skip(ctx, stmt, shown)
         except ParseError as exc:

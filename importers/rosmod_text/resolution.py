@@ -65,6 +65,8 @@ class DeploymentInfo:
     filename: str
     using: Stmt | None = None
     refs: list[Ref] = field(default_factory=list)
+    # the members of top-level group blocks: (group name, the path's parts, its item)
+    group_members: list[tuple[str, tuple[str, str, str], Stmt]] = field(default_factory=list)
 
 
 def check_unique(
