@@ -6,8 +6,6 @@ of that shape."""
 
 from __future__ import annotations
 
-import re
-
 import pytest
 from lxml import etree
 
@@ -40,6 +38,24 @@ _SPACE_SCHEDULING = (
 )
 
 
+def _task(ident: int, name: str, *, capacity: int, period: int, start: int, priority: int) -> str:
+    fields = {
+        "object_type": "TASK_OBJECT_TYPE",
+        "name": name,
+        "task_type": "Periodic_Type",
+        "cpu_name": "board",
+        "address_space_name": "control",
+        "capacity": capacity,
+        "deadline": period,
+        "start_time": start,
+        "priority": priority,
+        "policy": "Sched_Fifo",
+        "period": period,
+    }
+    body = "".join(f"\n   <{tag}>{value}</{tag}>" for tag, value in fields.items())
+    return f'  <periodic_task id="{ident}">{body}\n  </periodic_task>'
+
+
 def _osate_style(core_scheduling: str = _CORE_SCHEDULING, space_scheduling: str = _SPACE_SCHEDULING) -> str:
     return f"""<?xml version="1.0" encoding="UTF-8"?>
 <cheddar>
@@ -52,11 +68,8 @@ def _osate_style(core_scheduling: str = _CORE_SCHEDULING, space_scheduling: str 
   </core_unit>
  </core_units>
  <processors>
-  <mono_core_processor id="2">
-   <object_type>PROCESSOR_OBJECT_TYPE</object_type>
-   <name>board</name>
-   <core ref="1"/>
-  </mono_core_processor>
+  <mono_core_processor id="2"><object_type>PROCESSOR_OBJECT_TYPE</object_type><name>board</name>
+   <core ref="1"/></mono_core_processor>
  </processors>
  <address_spaces>
   <address_space id="3">
@@ -67,32 +80,8 @@ def _osate_style(core_scheduling: str = _CORE_SCHEDULING, space_scheduling: str 
   </address_space>
  </address_spaces>
  <tasks>
-  <periodic_task id="4">
-   <object_type>TASK_OBJECT_TYPE</object_type>
-   <name>sensor</name>
-   <task_type>Periodic_Type</task_type>
-   <cpu_name>board</cpu_name>
-   <address_space_name>control</address_space_name>
-   <capacity>2</capacity>
-   <deadline>10</deadline>
-   <start_time>0</start_time>
-   <priority>5</priority>
-   <policy>Sched_Fifo</policy>
-   <period>10</period>
-  </periodic_task>
-  <periodic_task id="5">
-   <object_type>TASK_OBJECT_TYPE</object_type>
-   <name>actuator</name>
-   <task_type>Periodic_Type</task_type>
-   <cpu_name>board</cpu_name>
-   <address_space_name>control</address_space_name>
-   <capacity>3</capacity>
-   <deadline>20</deadline>
-   <start_time>1</start_time>
-   <priority>3</priority>
-   <policy>Sched_Fifo</policy>
-   <period>20</period>
-  </periodic_task>
+{_task(4, "sensor", capacity=2, period=10, start=0, priority=5)}
+{_task(5, "actuator", capacity=3, period=20, start=1, priority=3)}
  </tasks>
 </cheddar>
 """
@@ -100,7 +89,7 @@ def _osate_style(core_scheduling: str = _CORE_SCHEDULING, space_scheduling: str 
 
 def _wrapped(text: str) -> str:
     """The same document in Cheddar's own style (the fields inside <scheduling_parameters>)."""
-    text = re.sub(r"<scheduling>", "<scheduling><scheduling_parameters>", text)
+    text = text.replace("<scheduling>", "<scheduling><scheduling_parameters>")
     return text.replace("</scheduling>", "</scheduling_parameters></scheduling>")
 
 
