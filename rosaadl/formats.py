@@ -218,7 +218,7 @@ class WriterOption:
 
     name: str  #: the keyword argument of the writer (``cheddar_format``)
     choices: tuple[str, ...]
-    default: str
+    default: str | None  #: None: the writer chooses (the help says how)
     help: str = ""
     reading: bool = False  #: also given to the reader of the inputs (Cheddar's time unit)
 
@@ -255,13 +255,14 @@ def _write_cheddar(
     out: Path,
     warnings: list[Diagnostic],
     *,
-    cheddar_format: str = "3",
+    cheddar_format: str | None = None,
     time_unit: str = "us",
 ) -> list[Path]:
     from rosaadl.exporters import cheddar
 
+    chosen = int(cheddar_format) if cheddar_format is not None else None
     written = cheddar.write_cheddar(
-        instance, out, cheddar_format=int(cheddar_format), time_unit=time_unit, diagnostics=warnings
+        instance, out, cheddar_format=chosen, time_unit=time_unit, diagnostics=warnings
     )
     return [written]
 
@@ -289,7 +290,12 @@ def writers() -> tuple[Writer, ...]:
             "Cheddar file to write (.xmlv3 or .xml).",
             _write_cheddar,
             (
-                WriterOption("cheddar_format", ("2", "3"), "3"),
+                WriterOption(
+                    "cheddar_format",
+                    ("2", "3"),
+                    None,
+                    "Cheddar 3 or 2 [default: the format a Cheddar input was read in, else 3].",
+                ),
                 WriterOption(
                     "time_unit",
                     ("us", "ms"),

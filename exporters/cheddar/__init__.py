@@ -1,4 +1,5 @@
-"""AADL instances as Cheddar XML: Cheddar 3 ADL (``.xmlv3``, default) or Cheddar 2 (``cheddar_format=2``).
+"""AADL instances as Cheddar XML: Cheddar 3 ADL (``.xmlv3``) or Cheddar 2 (``cheddar_format=2``);
+by default the format a model read from Cheddar came in, else Cheddar 3.
 
 What becomes what (the inverse of :mod:`rosaadl.importers.cheddar`, plus the AADL
 conventions Ocarina and OSATE's Cheddar plugin use):

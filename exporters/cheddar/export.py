@@ -6,7 +6,8 @@
 return a document while there are problems: times that are not whole numbers of the unit first,
 then what the model cannot say in Cheddar, then what Cheddar's reader would reject
 (:func:`~rosaadl.exporters.cheddar.structure.structure_problems`), each list in one
-:class:`ExportError`.
+:class:`ExportError`. Unless told otherwise it writes the format the model was read from
+(:func:`source_format`), Cheddar 3 for a model that did not come from Cheddar.
 """
 
 from __future__ import annotations
@@ -22,13 +23,13 @@ from rosaadl.bulk import gc_paused
 from rosaadl.errors import Diagnostic, ExportError, Location, RosaadlError
 from rosaadl.exporters.cheddar import v2, v3
 from rosaadl.exporters.cheddar.collect import collect
-from rosaadl.exporters.cheddar.context import ExportContext
+from rosaadl.exporters.cheddar.context import ExportContext, Props
 from rosaadl.exporters.cheddar.structure import structure_problems
 from rosaadl.exporters.cheddar.system import Collection
 from rosaadl.fileio import atomic_write_bytes, parse_xml_bytes
-from rosaadl.importers.cheddar.vocabulary import EXPORT_SECTIONS_V3, SECTIONS_V2, TIME_UNITS
+from rosaadl.importers.cheddar.vocabulary import CP, EXPORT_SECTIONS_V3, SECTIONS_V2, TIME_UNITS
 
-__all__ = ["dumps_cheddar", "write_cheddar"]
+__all__ = ["dumps_cheddar", "write_cheddar", "source_format"]
 
 
 def _document(c: Collection) -> etree._Element:
@@ -93,27 +94,40 @@ def _system_instance(source: EObject, root: str | None) -> EObject:
     )
 
 
+def source_format(instance: EObject) -> int | None:
+    """The Cheddar format (2 or 3) ``instance`` was read from, or None when it was not read
+    from a Cheddar file (``Cheddar_Properties::Cheddar_Format`` on the system instance)."""
+    value = Props(instance).get(CP + "Cheddar_Format")
+    return value if value in (2, 3) and not isinstance(value, bool) else None
+
+
 @checked
 def dumps_cheddar(
     source: EObject,
     *,
     root: str | None = None,
-    cheddar_format: int = 3,
+    cheddar_format: int | None = None,
     time_unit: str = "us",
     diagnostics: list[Diagnostic] | None = None,
 ) -> bytes:
     """A system instance (or the one in an ``AadlModel``) as Cheddar XML bytes.
 
-    ``cheddar_format`` is 3 (Cheddar 3 ADL) or 2 (Cheddar 2); ``time_unit`` is ``us`` or
-    ``ms``. Problems (unbound threads, missing capacities, times that are not whole numbers
+    ``cheddar_format`` is 3 (Cheddar 3 ADL) or 2 (Cheddar 2); by default, the format the
+    instance was read from when it came from a Cheddar file (:func:`source_format`: what was
+    read is written back, so a Cheddar 2 file whose tasks name an undeclared processor, which
+    Cheddar 2's reader accepts, stays a file Cheddar loads), else 3. ``time_unit`` is ``us``
+    or ``ms``. Problems (unbound threads, missing capacities, times that are not whole numbers
     of ``time_unit``, what the format cannot say) raise one :class:`ExportError` listing them
     all, with instance paths. Warnings go to ``diagnostics`` (and the log).
     """
-    if cheddar_format not in (2, 3):
+    if cheddar_format not in (None, 2, 3):
         raise ExportError(f"cheddar_format must be 2 or 3, not {cheddar_format!r}")
     if time_unit not in TIME_UNITS:
         raise ExportError(f"time_unit must be one of {', '.join(TIME_UNITS)}, not {time_unit!r}")
     instance = _system_instance(source, root)
+    read_as = source_format(instance)
+    if cheddar_format is None:
+        cheddar_format = read_as or 3
     found = diagnostics if diagnostics is not None else []
     ctx = ExportContext(instance, time_unit, cheddar_format, found)
     with gc_paused():
@@ -137,8 +151,14 @@ def dumps_cheddar(
         )
     problems = structure_problems(document, cheddar_format)
     if problems:
+        hint = (
+            "\n(the model was read from a Cheddar 2 file, whose reader does not check these names: "
+            "export it as Cheddar 2, or declare them in the model)"
+            if read_as == 2 and cheddar_format == 3
+            else ""
+        )
         raise ExportError(
-            "the Cheddar model would not load in Cheddar:\n  " + "\n  ".join(problems[:20]),
+            "the Cheddar model would not load in Cheddar:\n  " + "\n  ".join(problems[:20]) + hint,
             Location(path=model.instance_path(instance)),
         )
     etree.indent(document, space=" ")
@@ -160,7 +180,7 @@ def write_cheddar(
     path: str | Path,
     *,
     root: str | None = None,
-    cheddar_format: int = 3,
+    cheddar_format: int | None = None,
     time_unit: str = "us",
     diagnostics: list[Diagnostic] | None = None,
 ) -> Path:

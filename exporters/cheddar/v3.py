@@ -2,7 +2,8 @@
 
 Cheddar 3 gives every entity an ``id`` (its own when it was imported and is unique, else
 ``id_N``) and joins entities with ``ref`` attributes: a processor refers to its core units, a
-dependency to its two ends. Core units and address spaces carry ``<scheduling_parameters>``.
+dependency to its two ends. Core units and address spaces carry ``<scheduling_parameters>``
+inside ``<scheduling>``, as Cheddar writes them, whichever style the file was read in.
 Fields are written in the order of the field tables of
 :mod:`~rosaadl.importers.cheddar.vocabulary` (Cheddar 3's writer order).
 """

@@ -32,7 +32,9 @@ that every ``ref`` resolves; those are located errors here. Cheddar 2's reader c
 of the location names, and real Cheddar 2 files rely on it (a task on an undeclared
 processor): such names are kept as unresolved references with a warning, and are errors
 with ``strict=True``. Tags are matched case-insensitively and enumeration values in any
-case, as Cheddar's reader does. Hostile XML (entity declarations, external DTDs) is refused.
+case, as Cheddar's reader does, and scheduler fields are read with or without Cheddar's
+``<scheduling_parameters>`` wrapper (OSATE plug-ins leave it out; see :mod:`~.scheduling`).
+Hostile XML (entity declarations, external DTDs) is refused.
 
 The package: :mod:`~.vocabulary` (the field tables and enumerations the reader and the writer
 share), :mod:`~.document` (the XML document and its two styles), :mod:`~.values` (the model

@@ -4,7 +4,8 @@
 Cheddar 3 ADL) and reads the sections in the order that makes every name resolvable, each with
 the reader of its style (:mod:`~rosaadl.importers.cheddar.v3`, :mod:`~rosaadl.importers.cheddar.v2`).
 Sections rosaadl does not model are kept verbatim (``Unmodelled_Elements``), as are the fields
-nobody read (``Unmodelled_Fields``) and the order of the sections (``Section_Order``), so that
+nobody read (``Unmodelled_Fields``), the order of the sections (``Section_Order``) and the file's
+format (``Cheddar_Format``, which the exporter writes back by default), so that
 import → export → import gives an equal model.
 """
 
@@ -32,6 +33,7 @@ from rosaadl.importers.cheddar.state import ReadState
 from rosaadl.importers.cheddar.values import (
     aadl_identifier,
     associate,
+    int_value,
     list_value,
     record_value,
     str_value,
@@ -79,6 +81,7 @@ def read_document(state: ReadState, data: bytes) -> EObject:
     for owner, kept in state.kept_fields.values():
         associate(owner, CP + "Unmodelled_Fields", list_value(kept))
     associate(root, CP + "Section_Order", list_value(str_value(s) for s in order))
+    associate(root, CP + "Cheddar_Format", int_value(state.version))
     if state.kept:
         associate(
             root,
