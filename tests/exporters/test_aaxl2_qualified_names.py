@@ -116,7 +116,8 @@ XSI_TYPE = "{http://www.w3.org/2001/XMLSchema-instance}type"
 
 
 @pytest.fixture(scope="module")
-def workspace(tmp_path_factory) -> model.EObject:
+def exported(tmp_path_factory) -> tuple[model.EObject, Path]:
+    """(the instance of ``ROOT``, the ``.aaxl2`` file written for it beside its sidecars)."""
     folder = tmp_path_factory.mktemp("multi")
     for name, text in (
         ("alert.aadl", ALERT),
@@ -125,19 +126,13 @@ def workspace(tmp_path_factory) -> model.EObject:
         ("p.aadl", PROPS),
     ):
         (folder / name).write_text(text, encoding="utf-8")
-    return read_files([folder], warnings=[])
+    system = instantiate(read_files([folder], warnings=[]), ROOT)
+    return system, write_aaxl2(system, tmp_path_factory.mktemp("out"))
 
 
 @pytest.fixture(scope="module")
-def instance(workspace):
-    system = instantiate(workspace, ROOT)
-    yield system
-    workspace.instances.remove(system)
-
-
-@pytest.fixture(scope="module")
-def written(instance, tmp_path_factory) -> Path:
-    return write_aaxl2(instance, tmp_path_factory.mktemp("out"))
+def written(exported) -> Path:
+    return exported[1]
 
 
 def _links(data: bytes) -> list[etree._Element]:
@@ -275,7 +270,8 @@ def test_every_href_into_the_sidecars_designates_the_element_osate_would_find(wr
 # ----------------------------------------------------------------------------- read back
 
 
-def test_our_file_reads_back_with_the_qualified_names(written: Path, instance) -> None:
+def test_our_file_reads_back_with_the_qualified_names(exported) -> None:
+    instance, written = exported
     result = read_aaxl2(written)
     back = result.model.instances[0]
     ours, theirs = _by_path(instance), _by_path(back)
