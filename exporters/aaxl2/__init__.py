@@ -22,10 +22,13 @@ The file follows OSATE's serialisation (EMF's XMI writer on ``aadl2.ecore``/``in
 * intra-file references as EMF paths (``//@componentInstance.4/@featureInstance.0``, the root
   ``/``; ``/0/@…`` and ``/1`` when an ``xmi:XMI`` document holds several roots);
 * references into the declarative model as ``href`` children: classifiers and properties by
-  qualified name (``../P.aadl#P.T.impl``, ``…/Timing_Properties.aadl#Timing_Properties.Period``),
-  subcomponents, features, connections, modes and flows by position, counted the way OSATE's
-  Xtext model holds them (``#/0/@ownedPublicSection/@ownedClassifier.10/@ownedAbstractSubcomponent.0``:
-  classifiers per package section, members per containment list of their class);
+  qualified name with every ``::`` written ``.``, as OSATE's fragment provider names them
+  (``../P.aadl#P.T.impl``, ``…/Timing_Properties.aadl#Timing_Properties.Period``,
+  ``../functional-Alert.aadl#functional.Alert.Alert.basic`` for ``package functional::Alert``;
+  :func:`.vocabulary.name_fragment`), subcomponents, features, connections, modes and flows
+  by position, counted the way OSATE's Xtext model holds them
+  (``#/0/@ownedPublicSection/@ownedClassifier.10/@ownedAbstractSubcomponent.0``: classifiers
+  per package section, members per containment list of their class);
 * units and enumeration literals of OSATE's own property sets as positional references of the
   current OSATE era (:mod:`rosaadl.importers.osate_eras`), under
   ``platform:/plugin/org.osate.aadl2.contrib/…`` (``org.osate.contribution.sei`` for ``SEI``,

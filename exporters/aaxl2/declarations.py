@@ -1,9 +1,10 @@
 """Where the declarative elements of an instance are, as OSATE's hrefs name them.
 
 An instance file links each instance object to its declaration in the ``.aadl`` sources:
-classifiers and properties by qualified name (``../P.aadl#P.T.impl``), subcomponents,
-features, connections, modes and flows by position, counted the way OSATE's Xtext model holds
-them (classifiers per package section, members per containment list of their class:
+classifiers and properties by qualified name, every ``::`` written ``.`` (``../P.aadl#P.T.impl``,
+``../a-b.aadl#a.b.T.impl``: :func:`~.vocabulary.name_fragment`), subcomponents, features,
+connections, modes and flows by position, counted the way OSATE's Xtext model holds them
+(classifiers per package section, members per containment list of their class:
 ``#/0/@ownedPublicSection/@ownedClassifier.10/@ownedAbstractSubcomponent.0``).
 :class:`Declarations` finds each declaration through the model's
 :class:`~rosaadl.resolution.Resolver` and gives its ``(xsi:type, href)``; it records the units
@@ -31,6 +32,7 @@ from .vocabulary import (
     FEATURE_CLASS,
     OSATE_PACKAGES,
     OWNED_STEP_RE,
+    name_fragment,
 )
 
 __all__ = ["Declarations", "find_named"]
@@ -139,7 +141,7 @@ class Declarations:
         element = self.classifier(name)
         if element is not None:
             unit = unit_of(element)
-            href = f"{self.unit_uri(unit)}#{unit.name}.{element.name}"
+            href = f"{self.unit_uri(unit)}#{name_fragment(unit.name, element.name)}"
             found = (f"aadl2:{self.classifier_class(element)}", href)
         elif "#" in name:
             # kept as written by the reader: a positional reference names no kind of classifier
@@ -153,7 +155,8 @@ class Declarations:
             else:
                 stem = CATEGORY_CLASS.get(literal_name(category), "Abstract")
                 suffix = "Implementation" if "." in local or implementation else "Type"
-                found = (f"aadl2:{stem}{suffix}", f"{self.uri_for_name(package)}#{package}.{local}")
+                href = f"{self.uri_for_name(package)}#{name_fragment(package, local)}"
+                found = (f"aadl2:{stem}{suffix}", href)
         self.href_cache[key] = found
         return found
 

@@ -19,7 +19,7 @@ from rosaadl.importers import osate_eras
 from .osate_sets import era_property, era_search, library_property_types, older_eras, osate_set
 from .property_types import TypeInfo, unit_of
 from .state import Writer
-from .vocabulary import ERA
+from .vocabulary import ERA, name_fragment
 
 __all__ = [
     "Skip",
@@ -49,13 +49,13 @@ def property_info(w: Writer, name: str, obj: EObject) -> tuple[str, TypeInfo | N
         info = None
         if prop is not None:
             unit = unit_of(prop)
-            href = f"{w.links.unit_uri(unit)}#{unit.name}.{prop.name}"
+            href = f"{w.links.unit_uri(unit)}#{name_fragment(unit.name, prop.name)}"
             info = w.types.of_property(prop) if w.types is not None else None
         else:
             set_name, _, local = text.rpartition("::")
             if not set_name:
                 raise w.error(f"property {text!r} is not qualified and not declared in the model", obj)
-            href = f"{w.links.uri_for_name(set_name)}#{set_name}.{local}"
+            href = f"{w.links.uri_for_name(set_name)}#{name_fragment(set_name, local)}"
         if info is None and osate_set(text.rpartition("::")[0]):
             info = library_property_types().get(text.lower()) or era_property(text)
         found = (href, info)
@@ -136,11 +136,12 @@ def named_value(w: Writer, expr: EObject, info: TypeInfo | None) -> tuple[str, s
         constant = w.resolver.constant(name)
         if constant is not None:
             unit = unit_of(constant)
-            return "aadl2:PropertyConstant", f"{w.links.unit_uri(unit)}#{unit.name}.{constant.name}"
+            href = f"{w.links.unit_uri(unit)}#{name_fragment(unit.name, constant.name)}"
+            return "aadl2:PropertyConstant", href
         prop = w.resolver.property(name)
         if prop is not None:
             unit = unit_of(prop)
-            return "aadl2:Property", f"{w.links.unit_uri(unit)}#{unit.name}.{prop.name}"
+            return "aadl2:Property", f"{w.links.unit_uri(unit)}#{name_fragment(unit.name, prop.name)}"
     if base is not None and base.kind == "enum":
         raise Skip(f"{name!r} is not a literal of {base.set_name}::{base.table_name}")
     raise Skip(f"the enumeration literal {name!r} cannot be placed (its type is not known)")
@@ -169,7 +170,7 @@ def classifier_value(w: Writer, name: str | None) -> tuple[str, str]:
         unit = unit_of(element)
         return (
             f"aadl2:{w.links.classifier_class(element)}",
-            f"{w.links.unit_uri(unit)}#{unit.name}.{element.name}",
+            f"{w.links.unit_uri(unit)}#{name_fragment(unit.name, element.name)}",
         )
     text = (name or "").strip()
     if "#" in text:
@@ -179,5 +180,5 @@ def classifier_value(w: Writer, name: str | None) -> tuple[str, str]:
     if not package:
         raise Skip(f"classifier {text!r} is not qualified and not in the model")
     return "aadl2:DataImplementation" if "." in local else "aadl2:DataType", (
-        f"{w.links.uri_for_name(package)}#{package}.{local}"
+        f"{w.links.uri_for_name(package)}#{name_fragment(package, local)}"
     )

@@ -27,6 +27,7 @@ __all__ = [
     "OWNED_STEP_RE",
     "FRAGMENT_RE",
     "CLASS_OF_STEP",
+    "name_fragment",
 ]
 
 #: The OSATE era whose layout of the predeclared property sets the writer follows.
@@ -100,3 +101,22 @@ CLASS_OF_STEP = frozenset(
     + ["SubprogramCallSequence", "SubprogramCall", "Mode", "ModeTransition", "FlowSpecification"]
     + ["EndToEndFlow", "FlowImplementation", "Prototype", "Classifier"]
 )
+
+
+def name_fragment(*names: str) -> str:
+    """The fragment by which OSATE's hrefs name a package, classifier, property, property type or
+    constant: its qualified name with every ``::`` written ``.`` (``functional::Alert`` and
+    ``Alert.basic`` → ``functional.Alert.Alert.basic``; ``Timing_Properties.Period``).
+
+    OSATE's rule: the ``.aadl`` resources bind ``Aadl2QualifiedNameFragmentProvider``
+    (``org.osate.xtext.aadl2.util``, in ``Aadl2RuntimeModule.bindIFragmentProvider``), whose
+    ``getFragment`` is ``Aadl2QualifiedNameProvider.getFullyQualifiedName(obj).toString()``: the
+    name ``Pkg::Name`` (``Set::Name`` in a property set) split into segments at ``::`` by
+    ``Aadl2QualifiedNameConverter``, and Xtext's ``QualifiedName.toString()`` joins the segments
+    with ``.``. Only packages, package sections, classifiers, property sets, properties,
+    property types and constants have such a name; every other element (subcomponents,
+    features, connections, modes, flows, literals, units) falls back to its EMF path. OSATE
+    finds the element by comparing the fragment with each element's, case included, so the
+    names are written as declared.
+    """
+    return ".".join(part.strip() for name in names for part in name.split("::"))

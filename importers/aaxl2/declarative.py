@@ -27,6 +27,7 @@ from .xmi import (
     XMI_ID,
     XSI_TYPE,
     is_positional,
+    link_class,
     qualified_name,
     split_ref_attribute,
 )
@@ -121,10 +122,10 @@ class DeclarativeReader:
         text = element.get(attribute)
         if text is None:
             return None
-        _type, uri, frag = split_ref_attribute(text)
+        xsi_type, uri, frag = split_ref_attribute(text)
         if uri:
             if frag and not is_positional(frag):
-                name = qualified_name(frag)
+                name = qualified_name(frag, link_class(xsi_type))
                 return name if qualify else name.rpartition("::")[2]
             return f"{uri}#{frag}"
         target = self.element_at(frag)
@@ -182,7 +183,7 @@ class DeclarativeReader:
         for ref in refs:
             uri, _, frag = ref.partition("#")
             if frag and not is_positional(frag):
-                names.append(frag)
+                names.append(qualified_name(frag, "ModelUnit"))
             else:
                 names.append(Path(uri).name.rsplit(".", 1)[0])
         return names

@@ -25,7 +25,7 @@ from rosaadl.errors import Diagnostic, ImportFormatError, Location, RosaadlError
 from rosaadl.importers import osate_eras
 
 from .metamodel import metamodel_facts
-from .xmi import NS_AADL2, XMI_ID_KEY, XSI_TYPE, XSI_TYPE_KEY, name_of, split_ref_attribute
+from .xmi import NS_AADL2, XMI_ID_KEY, XSI_TYPE, XSI_TYPE_KEY, link_class, name_of, split_ref_attribute
 
 __all__ = ["Reader", "directory_of"]
 
@@ -61,7 +61,7 @@ class Reader:
         # (uri, fragment, role, property, field href) → [(object, feature name)]
         self.literal_uses: dict[tuple, list[tuple[EObject, str]]] = {}
         self.href_cache: dict[str, tuple[str, str]] = {}
-        self.link_names: dict[str, str] = {}
+        self.link_names: dict[tuple[str | None, str | None], str] = {}
         # a unit's (href, property, field href) → (the unit kept until decoded, its literal_uses list)
         self.unit_uses: dict[tuple, tuple[str, list]] = {}
         self.xsi_cache: dict[tuple[str, str], tuple[str, str]] = {}
@@ -217,26 +217,35 @@ class Reader:
         )
 
     def link_name(self, element: etree._Element) -> str:
-        """The name a link element's ``href`` is kept as (see :func:`name_of`), one string per href."""
-        text = element.get("href")
-        name = self.link_names.get(text)
+        """The name a link element's ``href`` is kept as (see :func:`name_of`; its ``xsi:type``
+        tells the class of the element a fragment by name designates), one string per href."""
+        xsi_type = element.get(XSI_TYPE_KEY)
+        key = (element.get("href"), xsi_type)
+        name = self.link_names.get(key)
         if name is None:
-            name = self.link_names[text] = name_of(*self.href(element))
+            name = self.link_names[key] = name_of(*self.href(element), link_class(xsi_type, element.tag))
         return name
+
+    def typed_link(self, el: etree._Element, tag: str, owner: str) -> tuple[str | None, str, str] | None:
+        """(class, uri, fragment) of the link ``tag`` of ``el``: a child element, or else the
+        attribute form EMF also writes (None when there is neither); the class is the ``aadl2``
+        class its ``xsi:type`` names (:func:`~.xmi.link_class`), or None."""
+        target = None
+        for child in el:
+            if child.tag == tag:
+                target = (link_class(child.get(XSI_TYPE_KEY), tag), *self.href(child))
+            else:
+                self.unknown(child, owner)
+        if target is None and el.get(tag) is not None:
+            xsi_type, uri, frag = split_ref_attribute(el.get(tag))
+            target = (link_class(xsi_type, tag), uri, frag)
+        return target
 
     def link(self, el: etree._Element, tag: str, owner: str) -> tuple[str, str] | None:
         """(uri, fragment) of the link ``tag`` of ``el``: a child element, or else the attribute
         form EMF also writes; None when there is neither."""
-        target = None
-        for child in el:
-            if child.tag == tag:
-                target = self.href(child)
-            else:
-                self.unknown(child, owner)
-        if target is None and el.get(tag) is not None:
-            _type, uri, frag = split_ref_attribute(el.get(tag))
-            target = (uri, frag)
-        return target
+        target = self.typed_link(el, tag, owner)
+        return None if target is None else target[1:]
 
     def ref_later(self, obj, feature, element, attribute, *, many=False, names_of: str | None = None) -> None:
         """Resolve reference ``attribute`` into ``feature`` once every object exists.

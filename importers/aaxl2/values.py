@@ -21,6 +21,7 @@ from .xmi import (
     XSI_TYPE,
     XSI_TYPE_KEY,
     is_positional,
+    link_class,
     name_of,
     qualified_name,
     split_ref_attribute,
@@ -76,7 +77,7 @@ def property_name(r: Reader, href: str | None, obj: EObject, el: etree._Element)
         uri, _, frag = href.partition("#")
         r.note_uri(uri)
         positional = not frag or is_positional(frag)
-        found = (href if positional else qualified_name(frag), positional)
+        found = (href if positional else qualified_name(frag, "Property"), positional)
         r.property_cache[href] = found
     name, positional = found
     if positional:
@@ -286,10 +287,11 @@ def _record(r: Reader, el, prop, field_href) -> EObject:
 
 def _classifier(r: Reader, el, prop, field_href) -> EObject:
     obj = r.new(r.cls["ClassifierValue"])
-    target = r.link(el, "classifier", "ClassifierValue")
+    target = r.typed_link(el, "classifier", "ClassifierValue")
     if target is None:
         raise r.error("a classifier value names no classifier", el)
-    name = name_of(*target)
+    kind, uri, frag = target
+    name = name_of(uri, frag, kind)
     r.fast.set_value(obj, r.f["ClassifierValue.classifier"], name)
     return obj
 
@@ -305,7 +307,7 @@ def _reference(r: Reader, el, prop, field_href) -> EObject:
                 nxt = child
             elif child.tag == "namedElement":
                 uri, frag = r.href(child)
-                named = name_of(uri, frag)
+                named = name_of(uri, frag, link_class(child.get(XSI_TYPE_KEY)))
                 steps.append(named if named.startswith(f"{uri}#") else named.rpartition("::")[2])
             elif child.tag == "arrayRange":
                 continue

@@ -31,7 +31,9 @@ __all__ = [
     "TAG_FEATURE",
     "PA_IGNORED",
     "DECLARATIVE_LINKS",
+    "UNIT_CLASSES",
     "qualified_name",
+    "link_class",
     "name_of",
     "is_positional",
     "split_ref_attribute",
@@ -134,19 +136,46 @@ DECLARATIVE_LINKS = frozenset(
 )
 
 
-def qualified_name(fragment: str) -> str:
-    """Xtext qualified name ``P.L.i`` / ``a::b.L.i`` / ``Set.Prop`` → ``P::L.i`` / ``a::b::L.i``."""
+# the classes whose whole qualified name is a unit's name (no trailing member name)
+UNIT_CLASSES = frozenset({"AadlPackage", "Package", "PropertySet", "ModelUnit"})
+
+
+def qualified_name(fragment: str, kind: str | None = None) -> str:
+    """The AADL name an Xtext fragment by name designates: ``P.T.i`` → ``P::T.i``,
+    ``functional.Alert.Alert.basic`` → ``functional::Alert::Alert.basic``, ``Set.Prop`` → ``Set::Prop``.
+
+    OSATE names a package, classifier, property, property type or constant by its qualified
+    name with every ``::`` written ``.`` (``Aadl2QualifiedNameFragmentProvider``: the segments of
+    ``Aadl2QualifiedNameProvider``'s ``Pkg::Name`` joined by Xtext's ``QualifiedName.toString()``;
+    see :func:`rosaadl.exporters.aaxl2.vocabulary.name_fragment`). The dots of a package name
+    with several segments and the dot of an implementation name read alike, so ``kind``, the
+    ``aadl2`` class of the element (its link's ``xsi:type``), tells how many trailing segments
+    are the element's own name: none for a package or property set (``functional.Alert`` →
+    ``functional::Alert``), two for an implementation (``…Implementation``), one for any other
+    class (a type, property, property type or constant). Without a class, and for a fragment
+    that already holds ``::`` (as earlier versions of this project wrote them), the first dot
+    ends the owner's name, which holds for every property set (one identifier) and every
+    package of one segment.
+    """
+    if kind is not None and "::" not in fragment:
+        segments = fragment.split(".")
+        if kind in UNIT_CLASSES:
+            return "::".join(segments)
+        own = 2 if kind.endswith("Implementation") else 1
+        if len(segments) > own:
+            return "::".join(segments[:-own]) + "::" + ".".join(segments[-own:])
     head, sep, local = fragment.partition(".")
     if not sep:
         return fragment
     return f"{head}::{local}"
 
 
-def name_of(uri: str, fragment: str) -> str:
-    """A link as we keep it: ``P::L.i`` for a fragment by qualified name, else ``uri#fragment``."""
+def name_of(uri: str, fragment: str, kind: str | None = None) -> str:
+    """A link as we keep it: ``P::L.i`` for a fragment by qualified name (:func:`qualified_name`,
+    ``kind`` the class of the element it names), else ``uri#fragment``."""
     if not fragment or is_positional(fragment):
         return f"{uri}#{fragment}"
-    return qualified_name(fragment)
+    return qualified_name(fragment, kind)
 
 
 def is_positional(fragment: str) -> bool:
@@ -161,3 +190,12 @@ def split_ref_attribute(text: str) -> tuple[str | None, str, str]:
         xsi_type, _, value = value.partition(" ")
     uri, _, frag = value.partition("#")
     return xsi_type, uri, frag
+
+
+def link_class(xsi_type: str | None, tag: str = "") -> str | None:
+    """The ``aadl2`` class a link names, for :func:`qualified_name`: its ``xsi:type``'s local
+    name, else ``ComponentImplementation`` for the links that only hold implementations (2014's
+    ``systemImplementation``, ``componentImplementation``), else None."""
+    if xsi_type:
+        return xsi_type.rpartition(":")[2]
+    return "ComponentImplementation" if tag.endswith("Implementation") else None

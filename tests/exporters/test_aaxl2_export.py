@@ -388,16 +388,18 @@ def _resolve(units: dict[str, model.EObject], href: str) -> model.EObject:
     uri, _, fragment = href.partition("#")
     unit = units[Path(uri).name]
     if not fragment.startswith("/"):
+        # OSATE's qualified name: the unit's name with its "::" written "." (demo.top.worker.fast)
+        dotted = unit.name.replace("::", ".")
         qualifier, _, local = (
             fragment.partition(".")
             if unit.eClass.name == "PropertySet"
             else (
-                fragment[: len(unit.name)],
+                fragment[: len(dotted)],
                 ".",
-                fragment[len(unit.name) + 1 :],
+                fragment[len(dotted) + 1 :],
             )
         )
-        assert qualifier.lower() == unit.name.lower(), href
+        assert qualifier == dotted, href
         found = model.find_classifier(unit.eContainer(), f"{unit.name}::{local}")
         if found is None:
             found = next(p for p in unit.ownedProperties if p.name.lower() == local.lower())
@@ -540,7 +542,7 @@ def test_inherited_period_points_into_the_declaring_implementation(exported) -> 
     root = _tree(exported.data)
     pool = [c for c in root.iter("componentInstance") if c.get("name") == "pool"]
     classifiers = {c.find("classifier").get("href") for c in pool}
-    assert classifiers == {"../demo-top.aadl#demo::top.worker.fast"}
+    assert classifiers == {"../demo-top.aadl#demo.top.worker.fast"}
     subs = {c.find("subcomponent").get("href").rpartition("#")[2] for c in pool}
     assert subs == {"/0/@ownedPublicSection/@ownedClassifier.7/@ownedThreadSubcomponent.1"}
 
