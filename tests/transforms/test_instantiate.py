@@ -869,3 +869,44 @@ def test_a_feature_group_member_is_found_by_name_or_else_by_position_at_either_e
     # no step leaves a feature group: nothing to narrow to
     info.sources, info.destinations = [x], [renamed]
     assert find_member(info, renamed, at_destination=True) is None
+
+
+_OSATE_2_0_METACLASSES = """
+package Legacy
+public
+  with Timing_Properties, Thread_Properties;
+  bus can end can;
+  device sensor
+    features
+      anybus: requires bus access;
+      tap: feature can;
+      raw: out data port;
+    properties
+      Period => 25 ms;
+      Priority => 5;
+  end sensor;
+  system top end top;
+  system implementation top.i
+    subcomponents
+      s: device sensor;
+  end top.i;
+end Legacy;
+"""
+
+
+def test_osate_2_0_features_take_the_properties_of_their_metaclass_s_supertypes(tmp_path):
+    """OSATE 2.0.1 to 2.0.8 (aadl2.ecore from osate2 #167, Feb 2013, to #486, Oct 2014) made a bus
+    access a ``Bus``, a data access, data port and event data port a ``Data``: ``applies to (bus)``
+    held for every bus access feature, with a classifier or without, and for no abstract feature,
+    whatever its classifier. OSATE today goes by the feature's own metaclass only."""
+    from rosaadl.importers.aadl_text import read_files
+
+    source = tmp_path / "legacy.aadl"
+    source.write_text(_OSATE_2_0_METACLASSES)
+    legacy = instantiate(read_files([source]), "Legacy::top.i", compatibility="osate-2.0")
+    assert property_value(model.find_instance(legacy, "s.anybus"), "Period") == Quantity(25, "ms")
+    assert property_value(model.find_instance(legacy, "s.raw"), "Priority") == 5
+    assert property_value(model.find_instance(legacy, "s.tap"), "Period") is None
+    current = instantiate(read_files([source]), "Legacy::top.i")
+    for path, name in (("s.anybus", "Period"), ("s.raw", "Priority"), ("s.tap", "Period")):
+        assert property_value(model.find_instance(current, path), name) is None
