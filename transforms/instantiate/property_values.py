@@ -1,9 +1,12 @@
 """Property values on instances: the resolved value of every property on every instance object.
 
-The properties given to instance objects are those the model associates somewhere (as OSATE
-caches the properties its classifiers use, here across all loaded units, so that an instance's
-value of a property does not depend on which classifiers it happens to use), each where it
-applies (``applies to``) and has a value, default values included. The values are found by
+The properties given to instance objects are those the model associates somewhere, each where
+it applies (``applies to``, by the object's metaclass in the OSATE followed) and has a value,
+default values included. OSATE caches fewer: only the properties associated in the classifiers
+the instance uses (``InstantiateModel.getAllUsedPropertyDefinitions``) and no default value
+(``PropertyImpl.evaluate``); here every loaded unit counts and defaults are kept, so that an
+instance's value of a property does not depend on which classifiers it happens to use and the
+analyses find every value on the instance. The values are found by
 :class:`~rosaadl.lookup.PropertyLookup` (AADL's lookup order, ``in binding`` through the
 processor bindings); ``reference (...)`` values become references to instance objects.
 """
