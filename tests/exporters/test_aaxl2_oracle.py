@@ -41,7 +41,7 @@ from benchmarks.generators.corpus import aadl_sources
 from rosaadl import model
 from rosaadl.exporters.aadl_text import unit_file_name
 from rosaadl.exporters.aaxl2 import export_aaxl2
-from rosaadl.importers.aadl_text import read_files
+from rosaadl.importers.aadl_text import read_files, read_string
 from rosaadl.importers.aaxl2 import ImportResult, loads_aaxl2, read_aaxl2
 from rosaadl.importers.osate_eras import normalize_fragment
 from rosaadl.properties import own_property, python_value
@@ -541,13 +541,15 @@ def _explain_names(
     differences: dict,
     osate: dict,
     known: tuple,
+    workspace,
     is_default: Callable[[str, str], bool] | None,
     stale: list[str],
 ) -> None:
     """Remove from ``differences`` the property names the rows :class:`Names`, :class:`Unloaded`,
     :class:`Defaults` and :class:`NoValues` explain (a difference whose names are all explained
-    goes). A row that explains no name is stale, and so is a :class:`Defaults` row for a value of
-    ours that is not the default, and a :class:`NoValues` row for a file with values."""
+    goes). A row that explains no name is stale, and so is an :class:`Unloaded` row for a set the
+    sources hold, a :class:`Defaults` row for a value of ours that is not the default, and a
+    :class:`NoValues` row for a file with values."""
     names = {
         key[1]: (set(ours or ()) - set(osate_names or ()), set(osate_names or ()) - set(ours or ()))
         for key, (ours, osate_names) in differences.items()
@@ -566,6 +568,13 @@ def _explain_names(
             continue
         if isinstance(row, NoValues) and any(v for k, v in osate.items() if k[0] == "properties"):
             stale.append(f"{row}: OSATE's file has property values")
+            continue
+        if (
+            isinstance(row, Unloaded)
+            and workspace is not None
+            and model.find_unit(workspace, row.property_set)
+        ):
+            stale.append(f"{row}: the sources hold it")
             continue
         for path, (ours_only, osate_only) in names.items():
             if isinstance(row, Unloaded):
@@ -641,7 +650,7 @@ def _explain(
             if differences.get((row.section, row.key)) != (row.ours, row.osate):
                 stale.append(f"{row}: found {differences.get((row.section, row.key))}")
             differences.pop((row.section, row.key), None)
-    _explain_names(differences, osate, known, is_default, stale)
+    _explain_names(differences, osate, known, workspace, is_default, stale)
     return osate, differences, stale
 
 
@@ -770,6 +779,12 @@ def test_the_oracle_explains_property_names_only_by_rows_that_hold() -> None:
     _, differences, stale = _explain(ours, dict(osate), rows, None, lambda path, name: False)
     assert all(any(message.startswith(str(row)) for message in stale) for row in rows)
     assert len(stale) == 5 and set(differences) == {("properties", "s.a"), ("properties", "s.c")}
+    # a set the sources hold explains nothing
+    sources = read_string("property set Q is\nend Q;\n", "q.aadl")
+    _, differences, stale = _explain(ours, dict(osate), (Unloaded("Q", "not loaded"),), sources)
+    assert ("properties", "s.a") in differences and stale == [
+        f"{Unloaded('Q', 'not loaded')}: the sources hold it"
+    ]
 
 
 # ----------------------------------------------------------------------------- the exporter's tables
