@@ -170,6 +170,11 @@ _UAV_TYPES = (
     "file (the 3-place shift above): ours takes the data type's Data_Model values, OSATE's file has none "
     "on these ports (and has them on request_nofly_zones, typed by Map, as ours)"
 )
+_UNLOADED = (
+    "not in the corpus: its values are enumeration literals (in lists and records too), which our exporter "
+    "cannot place in the .aaxl2 without the set's types and leaves out with a warning; OSATE, with the set, "
+    "writes them, and spreads its inherit properties to the objects below"
+)
 _POK_CPU = (
     "common_pkg::cpu extends RAMSES_processors::cpu_x86, whose package is not in the corpus: OSATE had it "
     "and took POK::Architecture and POK::BSP from it"
@@ -180,9 +185,7 @@ _CALL_SEQUENCE = (
 )
 KNOWN_DIFFERENCES: dict[str, tuple[Row, ...]] = {
     "case-hamr-edp-domains": (
-        Unloaded(
-            "HAMR", "the HAMR property set is not in the corpus (OSATE gives HAMR::Platform to the root)"
-        ),
+        Unloaded("HAMR", _UNLOADED + " (HAMR::Platform => (seL4_TB, seL4_Only) on the root)"),
         Defaults(_QUEUES, _DEFAULTS),
     ),
     "ex-carsystem": (
@@ -194,16 +197,8 @@ KNOWN_DIFFERENCES: dict[str, tuple[Row, ...]] = {
         ),
     ),
     "ex-crossdomain-security": (
-        Unloaded(
-            "SecurityEnforcementProperties",
-            "not in this project's sources: OSATE knew its inherit properties (Encryption reaches every "
-            "object below an association), ours keeps values only where they are associated",
-        ),
-        Unloaded(
-            "SecurityClassificationProperties",
-            "not in this project's sources: OSATE knew Security_Level is inherit (it reaches the features "
-            "of the data stores), ours keeps it only where it is associated",
-        ),
+        Unloaded("SecurityEnforcementProperties", _UNLOADED + " (Encryption, Data_Authentication)"),
+        Unloaded("SecurityClassificationProperties", _UNLOADED + " (Security_Level)"),
     ),
     "ex-issue440-arinc653": (
         Names("root_impl_Instance.the_cpu", osate_only=("POK::Architecture", "POK::BSP"), reason=_POK_CPU),
@@ -261,12 +256,7 @@ KNOWN_DIFFERENCES: dict[str, tuple[Row, ...]] = {
                 "WPM.mission_window",
             )
         ),
-        Unloaded(
-            "CASE_Properties",
-            "the CASE_Properties set is not in the corpus: OSATE gives its properties where they apply "
-            "(COMM_MODALITY to the buses, not to the bus access features), ours, without the definitions, "
-            "wherever they have a value",
-        ),
+        Unloaded("CASE_Properties", _UNLOADED + " (BOUNDARY, COMP_TYPE, COMM_MODALITY, ...)"),
         Defaults(_QUEUES, _DEFAULTS),
     ),
     "gtse-atsv-tier0": (
