@@ -35,8 +35,10 @@ feature categories a component category may hold, as AS5506C's containment rules
 (:data:`SUBCOMPONENTS_ALLOWED`, :data:`FEATURES_ALLOWED`), which connection kinds, calls and
 flows it may have, an implementation of another category than its type, ``end`` names, unit
 conversions); and, in :func:`read_files`, the names, units and enumeration literals that do not
-resolve (:class:`NameResolutionError`, every one in one error).  A name declared twice in one
-namespace is a warning (real, tool-generated models have them; look-ups find the first).
+resolve (:class:`NameResolutionError`, every one in one error; with ``lenient=True`` a classifier
+or package that is not found is a warning instead, as OSATE reads a project whose with-ed package
+is missing).  A name declared twice in one namespace is a warning (real, tool-generated models
+have them; look-ups find the first).
 
 The package, one idea per module:
 

@@ -38,11 +38,12 @@ _MEMBER_LISTS: dict[str, tuple[str, ...]] = {
 }
 
 
-def check_names_and_values(model: EObject) -> list[Diagnostic]:
+def check_names_and_values(model: EObject, *, lenient: bool = False) -> list[Diagnostic]:
     """Name resolution (``rosaadl.resolution``) and the units and literals of every value; one
-    diagnostic per place (a value checked at a place the resolver already reported is left out)."""
+    diagnostic per place (a value checked at a place the resolver already reported is left out).
+    ``lenient``: a classifier or package that is not found is a warning."""
     resolver = Resolver(model)
-    diagnostics = list(resolver.check())
+    diagnostics = list(resolver.check(lenient=lenient))
     seen = {(d.location.file, d.location.line, d.location.column) for d in diagnostics}
     for diagnostic in ValueChecker(resolver).run(model):
         key = (diagnostic.location.file, diagnostic.location.line, diagnostic.location.column)

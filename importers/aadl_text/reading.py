@@ -170,6 +170,7 @@ def read_files(
     include_library: bool = True,
     warnings: list[Diagnostic] | None = None,
     check: bool = True,
+    lenient: bool = False,
 ) -> EObject:
     """Read AADL files and folders (searched recursively for ``.aadl``/``.aadl2`` files, in
     sorted order) into one ``AadlModel``.
@@ -185,6 +186,9 @@ def read_files(
     message and in ``.errors``); warnings (a property set that is not loaded, a missing
     ``with`` clause, a name declared twice, prototypes) are logged and appended to ``warnings``.
     ``check=False`` reads without resolving (files that name packages not given, for example).
+    ``lenient`` keeps going past a classifier or package that is not found (a warning, as OSATE
+    does; the instantiator's ``strict=False`` then instantiates without it): the model of a
+    project whose with-ed package is missing is read.
     """
     if isinstance(paths, str | os.PathLike):
         paths = [paths]
@@ -219,7 +223,7 @@ def read_files(
             add(model, "units", *units)
     if check:
         with gc_paused(promote=False):  # the checks only add caches: no garbage to collect
-            notes.extend(check_names_and_values(model))
+            notes.extend(check_names_and_values(model, lenient=lenient))
     _report([d for d in notes if d.severity != "error"], warnings)
     _raise_errors([d for d in notes if d.severity == "error"], NameResolutionError, "errors")
     return model

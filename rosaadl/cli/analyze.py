@@ -68,7 +68,7 @@ def command(
     from rosaadl.analysis.report import parse_only, run_analyses
 
     selected = parse_only(only)  # a bad --only is a usage error before any reading
-    loaded = read_aadl_inputs(list(inputs), time_unit=time_unit)
+    loaded = read_aadl_inputs(list(inputs), time_unit=time_unit, lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient)
     options.progress(f"analysing {instance.name}: {', '.join(selected)}")
     report = run_analyses(instance, selected)

@@ -45,7 +45,7 @@ def _export(options: Options, item: Writer, inputs: tuple[Path, ...], out: Path,
     root = given.pop("root", None)
     lenient = given.pop("lenient", False)
     reading = {o.name: given[o.name] for o in item.options if o.reading}
-    loaded = read_aadl_inputs(list(inputs), **reading)
+    loaded = read_aadl_inputs(list(inputs), lenient=lenient, **reading)
     notes: list = []
     if item.takes == "units":
         library = _library_files()

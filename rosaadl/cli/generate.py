@@ -88,7 +88,7 @@ def generate_rclpy(
     if len(inputs) == 1 and reader_for(inputs[0]).name in ("rosmod", "webgme"):
         loaded, rosmod_trace = _rosmod_inputs(inputs[0], project)
     else:
-        loaded = read_aadl_inputs(list(inputs))
+        loaded = read_aadl_inputs(list(inputs), lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient)
     report = Report()
     result = generate_workspace(

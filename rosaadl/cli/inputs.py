@@ -30,8 +30,11 @@ class Inputs:
     warnings: list[Diagnostic] = field(default_factory=list)
 
 
-def read_aadl_inputs(paths: Sequence[Path], *, strict: bool = False, time_unit: str = "us") -> Inputs:
-    """Read the inputs of an AADL verb into one ``AadlModel``."""
+def read_aadl_inputs(
+    paths: Sequence[Path], *, strict: bool = False, time_unit: str = "us", lenient: bool = False
+) -> Inputs:
+    """Read the inputs of an AADL verb into one ``AadlModel`` (``lenient``: a classifier or
+    package of AADL text that is not found is a warning, see ``aadl_text.read_files``)."""
     if not paths:
         raise UsageError("no input given")
     for path in paths:
@@ -55,7 +58,7 @@ def read_aadl_inputs(paths: Sequence[Path], *, strict: bool = False, time_unit: 
         from rosaadl.importers import aadl_text
 
         warnings: list[Diagnostic] = []
-        model = aadl_text.read_files(list(text), warnings=warnings)
+        model = aadl_text.read_files(list(text), warnings=warnings, lenient=lenient)
         return Inputs(model, warnings)
     loaded = read_input(others[0], strict=strict, time_unit=time_unit)
     if loaded.kind != "aadl" or loaded.root.eClass.name != "AadlModel":

@@ -46,7 +46,7 @@ def command(
     if out.suffix.lower() not in (".xmi", ".json"):
         raise UsageError("the output must be a .xmi or .json model file", file=str(out))
     report = Report()
-    loaded = read_aadl_inputs(list(inputs))
+    loaded = read_aadl_inputs(list(inputs), lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient, compatibility=compat)
     report.note(loaded.warnings)
     counts = {

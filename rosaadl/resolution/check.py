@@ -5,6 +5,13 @@ group inverses, renames, classifier values, ``in binding``), unknown properties,
 and constants, extends cycles, units declared twice. Warnings: property sets that are not loaded
 ("values stay untyped", once per unit and set), packages named in ``with`` clauses that are not
 loaded, and packages whose classifiers are named without a ``with`` clause (once per unit).
+
+Lenient (``lenient=True``), a classifier or renamed package that is not found is a warning, as
+OSATE keeps going past a reference it cannot resolve: Xtext leaves an unresolved proxy (an
+error marker in the editor, no stop), and the instantiator instantiates a subcomponent whose
+classifier is such a proxy without a classifier. The component type an implementation names is
+not forgiven (it is declared in the same package, so no missing file explains it), nor a
+classifier of the wrong kind, an unknown property or an extends cycle.
 """
 
 from __future__ import annotations
@@ -26,19 +33,21 @@ if TYPE_CHECKING:
 __all__ = ["check_references"]
 
 
-def check_references(resolver: Resolver) -> list[Diagnostic]:
-    """Located diagnostics for every reference of the resolver's model that does not resolve.
+def check_references(resolver: Resolver, *, lenient: bool = False) -> list[Diagnostic]:
+    """Located diagnostics for every reference of the resolver's model that does not resolve
+    (with ``lenient``, a classifier or package that is not found is a warning).
 
     Never raises for a missing property set or an extends cycle: both are reported.
     """
-    return _ReferenceCheck(resolver).run()
+    return _ReferenceCheck(resolver, lenient=lenient).run()
 
 
 class _ReferenceCheck:
     """One run of the check: the diagnostics so far and what was reported once already."""
 
-    def __init__(self, resolver: Resolver) -> None:
+    def __init__(self, resolver: Resolver, *, lenient: bool = False) -> None:
         self.resolver = resolver
+        self.lenient = lenient
         self.diagnostics: list[Diagnostic] = []
         # (id(unit), lower-case name): missing sets and with clauses reported, packages imported
         self.reported_sets: set[tuple[int, str]] = set()
@@ -49,6 +58,10 @@ class _ReferenceCheck:
 
     def warning(self, element: EObject, message: str) -> None:
         self.diagnostics.append(Diagnostic("warning", message, self.resolver.location(element)))
+
+    def unresolved(self, element: EObject, message: str) -> None:
+        """A classifier or package that is not found: an error, a warning when lenient."""
+        (self.warning if self.lenient else self.error)(element, message)
 
     def run(self) -> list[Diagnostic]:
         resolver = self.resolver
@@ -69,7 +82,7 @@ class _ReferenceCheck:
                 for ren in unit.renamings:
                     if enum_name(ren.kind) in ("package", "all"):
                         if resolver.unit(strip_all(ren.target)) is None:
-                            self.error(ren, f"renamed package {strip_all(ren.target)} not found")
+                            self.unresolved(ren, f"renamed package {strip_all(ren.target)} not found")
                     else:
                         self.classifier_name(ren, ren.target, "renamed classifier")
                 for classifier in unit.classifiers:
@@ -109,7 +122,10 @@ class _ReferenceCheck:
                 element, name
             ):
                 return
-            self.error(element, f"{what} {name} not found")
+            if what == "component type":
+                self.error(element, f"{what} {name} not found")
+            else:
+                self.unresolved(element, f"{what} {name} not found")
         elif kinds and not is_a(found, *kinds):
             self.error(element, f"{what} {name} is a {found.eClass.name}, expected {' or '.join(kinds)}")
         else:

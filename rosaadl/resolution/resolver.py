@@ -243,9 +243,10 @@ class Resolver:
 
     # ------------------------------------------------------------------ check
 
-    def check(self) -> list[Diagnostic]:
-        """Located diagnostics for every reference that does not resolve (see :mod:`.check`).
+    def check(self, *, lenient: bool = False) -> list[Diagnostic]:
+        """Located diagnostics for every reference that does not resolve (see :mod:`.check`;
+        ``lenient``: a classifier or package that is not found is a warning).
 
         Never raises for a missing property set.
         """
-        return check_references(self)
+        return check_references(self, lenient=lenient)

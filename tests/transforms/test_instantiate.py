@@ -770,6 +770,9 @@ public
     features
       canbus: requires bus access can;
       sample: out data port msg;
+      anybus: requires bus access;
+      tap: feature can;
+      raw: out data port;
     properties
       Period => 25 ms;
       Priority => 5;
@@ -784,21 +787,39 @@ end Applies;
 """
 
 
-def test_features_take_the_properties_that_apply_to_their_own_category(tmp_path):
-    """Period applies to bus, Priority to data: OSATE today gives neither to a bus access feature
-    or a data port (the feature's metaclass decides); OSATE 2.0 also went by the feature's
-    classifier, and the inherited values reached the features."""
+def _applicability(tmp_path, compatibility="current"):
     from rosaadl.importers.aadl_text import read_files
 
     source = tmp_path / "applies.aadl"
     source.write_text(_FEATURE_APPLICABILITY)
-    current = instantiate(read_files([source]), "Applies::top.i")
+    return instantiate(read_files([source]), "Applies::top.i", compatibility=compatibility)
+
+
+def test_features_take_the_properties_that_apply_to_their_own_category(tmp_path):
+    """Period applies to bus, Priority to data: OSATE today gives neither to a bus access feature
+    or a data port (the feature's metaclass decides); in OSATE 2.0 a bus access was a bus and a
+    data port a data, and the inherited values reached the features."""
+    current = _applicability(tmp_path)
     canbus, sample = model.find_instance(current, "s.canbus"), model.find_instance(current, "s.sample")
     assert property_value(model.find_instance(current, "s"), "Period") == Quantity(25, "ms")
     assert property_value(canbus, "Period") is None and property_value(sample, "Priority") is None
-    legacy = instantiate(read_files([source]), "Applies::top.i", compatibility="osate-2.0")
+    legacy = _applicability(tmp_path, "osate-2.0")
     assert property_value(model.find_instance(legacy, "s.canbus"), "Period") == Quantity(25, "ms")
     assert property_value(model.find_instance(legacy, "s.sample"), "Priority") == 5
+
+
+def test_osate_2_0_features_take_the_properties_of_their_metaclass_s_supertypes(tmp_path):
+    """OSATE 2.0.1 to 2.0.8 (aadl2.ecore from osate2 #167, Feb 2013, to #486, Oct 2014) made a bus
+    access a ``Bus``, a data access, data port and event data port a ``Data``: ``applies to (bus)``
+    held for every bus access feature, with a classifier or without, and for no abstract feature,
+    whatever its classifier. OSATE today goes by the feature's own metaclass only."""
+    legacy = _applicability(tmp_path, "osate-2.0")
+    assert property_value(model.find_instance(legacy, "s.anybus"), "Period") == Quantity(25, "ms")
+    assert property_value(model.find_instance(legacy, "s.raw"), "Priority") == 5
+    assert property_value(model.find_instance(legacy, "s.tap"), "Period") is None
+    current = _applicability(tmp_path)
+    for path, name in (("s.anybus", "Period"), ("s.raw", "Priority"), ("s.tap", "Period")):
+        assert property_value(model.find_instance(current, path), name) is None
 
 
 _FEATURES_ORDERED = """

@@ -1,9 +1,12 @@
 """Property values on instances: the resolved value of every property on every instance object.
 
-The properties given to instance objects are those the model associates somewhere (as OSATE
-caches the properties its classifiers use, here across all loaded units, so that an instance's
-value of a property does not depend on which classifiers it happens to use), each where it
-applies (``applies to``) and has a value, default values included. The values are found by
+The properties given to instance objects are those the model associates somewhere, each where
+it applies (``applies to``, by the object's metaclass in the OSATE followed) and has a value,
+default values included. OSATE caches fewer: only the properties associated in the classifiers
+the instance uses (``InstantiateModel.getAllUsedPropertyDefinitions``) and no default value
+(``PropertyImpl.evaluate``); here every loaded unit counts and defaults are kept, so that an
+instance's value of a property does not depend on which classifiers it happens to use and the
+analyses find every value on the instance. The values are found by
 :class:`~rosaadl.lookup.PropertyLookup` (AADL's lookup order, ``in binding`` through the
 processor bindings); ``reference (...)`` values become references to instance objects.
 """
@@ -19,7 +22,7 @@ from rosaadl import model as _model
 from rosaadl.lookup import ComponentNode, Found, NoValue, accepts
 from rosaadl.resolution import feature_category_word, split_path
 
-from .mirrors import ComponentMirror, ConnectionRecord, FeatureMirror, literal
+from .mirrors import ComponentMirror, ConnectionRecord, FeatureMirror
 
 if TYPE_CHECKING:
     from .instantiator import Instantiator
@@ -55,10 +58,12 @@ class _PropertyValues:
         self.accept_cache: dict[tuple[str, str, str], bool] = {}
 
     def accepts(self, key: str, kind: str, word: str) -> bool:
+        """Whether property ``key`` applies to an object of ``kind`` described by ``word``, with
+        the metaclass hierarchy of the OSATE the instantiation follows (:func:`accepts`)."""
         marker = (key, kind, word)
         cached = self.accept_cache.get(marker)
         if cached is None:
-            cached = accepts(self.lookup.definition(key), kind, word)
+            cached = accepts(self.lookup.definition(key), kind, word, osate_2_0=self.st.legacy)
             self.accept_cache[marker] = cached
         return cached
 
@@ -141,7 +146,6 @@ class _PropertyValues:
 
     def features(self, ci: ComponentMirror) -> None:
         """The feature instances of a component (feature group members included)."""
-        st = self.st
         lookup = self.lookup
         binding = self.binding
         node = ci.node
@@ -150,18 +154,11 @@ class _PropertyValues:
         ]
         while stack:
             fi, chain, names = stack.pop()
+            # by the feature's metaclass: OSATE 2.0's made a bus access a bus (an inherited Period
+            # reaches it, the bus classifier's Transmission_Time too), today's a feature only
             word = feature_category_word(fi.category)
-            # OSATE 2.0 also let a feature take the properties of its classifier's category (a data
-            # port of data Integer takes an inherited Priority); OSATE today goes by the feature's
-            # own metaclass only (a bus access feature takes no Period)
-            classifier_word = ""
-            if st.legacy:
-                classifier = fi.fgt if fi.fgt is not None else st.resolver.feature_classifier(fi.decl)
-                classifier_word = _classifier_word(classifier)
             for key in self.keys:
-                if not self.accepts(key, "feature", word) and not (
-                    classifier_word and self.accepts(key, "classifier", classifier_word)
-                ):
+                if not self.accepts(key, "feature", word):
                     continue
                 found = lookup.with_default(lookup.feature_found(node, chain, names, key, binding), key, node)
                 if found is not None:
@@ -247,15 +244,6 @@ def _resolve_reference(start: ComponentMirror, path: str) -> EObject | None:
     if isinstance(current, (ComponentMirror, FeatureMirror)):
         return current.obj
     return current
-
-
-def _classifier_word(classifier: EObject | None) -> str:
-    """The metaclass word a classifier answers to in ``applies to`` lists."""
-    if classifier is None:
-        return ""
-    if _model.is_a(classifier, "FeatureGroupType"):
-        return "feature group type"
-    return literal(getattr(classifier, "category", None))
 
 
 def _referenced(expr: EObject) -> list[EObject]:
