@@ -62,8 +62,6 @@ def command(
                 inputs[0], out, project=project, trace_file=trace_file, warnings=warnings
             )
         else:
-            if trace_file is not None and not trace_file.exists():
-                raise UsageError("no such trace file", file=str(trace_file))
             from rosaadl.workflow.convert import convert_aadl_files
 
             written = convert_aadl_files(
