@@ -197,9 +197,10 @@ def convert_aadl_files(
         log.info("%d projects in %s: each converted on its own", len(folders), paths[0])
     else:
         jobs = [(list(paths), Path(out_dir), trace_file)]
+    traces = [_existing_trace(trace, bool(folders)) for _, _, trace in jobs]  # all, before any reading
     outputs: list[tuple[Path, str]] = []
-    for sources, target, trace in jobs:
-        project = _rosmod_project(sources, _existing_trace(trace, bool(folders)), roots, warnings)
+    for (sources, target, _), forward in zip(jobs, traces, strict=True):
+        project = _rosmod_project(sources, forward, roots, warnings)
         for relative, text in render_project(project, warnings=warnings).items():
             outputs.append((fileio.safe_join(target, *relative.split("/")), text))
     for target, text in outputs:
