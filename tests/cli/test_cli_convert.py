@@ -17,34 +17,33 @@ def run(args: list[str], capsys) -> tuple[int, str, str]:
     return code, out.out, out.err
 
 
-@pytest.mark.corpus
-def test_rosmod_to_aadl_and_back_with_trace(corpus: Path, tmp_path: Path, capsys) -> None:
-    project = corpus / "rosmod/textual-v0.3/three-components"
-    trace = tmp_path / "run.trace.xmi"
-    code, _, err = run(["convert", str(project), "-o", str(tmp_path / "aadl"), "--trace", str(trace)], capsys)
-    assert code == 0, err
-    assert trace.exists() and any(p.suffix == ".aadl" for p in (tmp_path / "aadl").iterdir())
-    code, _, err = run(["check", str(tmp_path / "aadl")], capsys)
+def to_aadl_and_back(source: Path, tmp_path: Path, capsys) -> tuple[Path, Path]:
+    """``convert SOURCE -o aadl --trace T`` then ``convert aadl --to rosmod -o back --trace T``."""
+    aadl, back, trace = tmp_path / "aadl", tmp_path / "back", tmp_path / "run.trace.xmi"
+    code, _, err = run(["convert", str(source), "-o", str(aadl), "--trace", str(trace)], capsys)
     assert code == 0, err
     code, _, err = run(
-        [
-            "convert",
-            str(tmp_path / "aadl"),
-            "--to",
-            "rosmod",
-            "-o",
-            str(tmp_path / "back"),
-            "--trace",
-            str(trace),
-        ],
-        capsys,
+        ["convert", str(aadl), "--to", "rosmod", "-o", str(back), "--trace", str(trace)], capsys
     )
     assert code == 0, err
-    original, back = read_project(project), read_project(tmp_path / "back")
+    return aadl, back
+
+
+def assert_same_components_and_deployments(original, back) -> None:
     assert sorted(c.name for p in back.software.packages for c in p.components) == sorted(
         c.name for p in original.software.packages for c in p.components
     )
     assert sorted(d.name for d in back.deployments) == sorted(d.name for d in original.deployments)
+
+
+@pytest.mark.corpus
+def test_rosmod_to_aadl_and_back_with_trace(corpus: Path, tmp_path: Path, capsys) -> None:
+    project = corpus / "rosmod/textual-v0.3/three-components"
+    aadl, back = to_aadl_and_back(project, tmp_path, capsys)
+    assert (tmp_path / "run.trace.xmi").exists() and any(p.suffix == ".aadl" for p in aadl.iterdir())
+    code, _, err = run(["check", str(aadl)], capsys)
+    assert code == 0, err
+    assert_same_components_and_deployments(read_project(project), read_project(back))
     _ = model  # the projects are rosmod models
 
 
@@ -197,29 +196,9 @@ def test_webgmex_archive_to_aadl_and_back_per_project(corpus: Path, tmp_path: Pa
     from rosaadl.importers.rosmod_webgme import read_webgmex
 
     seed = corpus / "rosmod/webgme/samples-2018-05-19_noTLC.webgmex"
-    trace = tmp_path / "run.trace.xmi"
-    code, _, err = run(["convert", str(seed), "-o", str(tmp_path / "aadl"), "--trace", str(trace)], capsys)
-    assert code == 0, err
-    code, _, err = run(
-        [
-            "convert",
-            str(tmp_path / "aadl"),
-            "--to",
-            "rosmod",
-            "-o",
-            str(tmp_path / "back"),
-            "--trace",
-            str(trace),
-        ],
-        capsys,
-    )
-    assert code == 0, err
-    folders = sorted(p.name for p in (tmp_path / "aadl").iterdir())
-    assert sorted(p.name for p in (tmp_path / "back").iterdir()) == folders and len(folders) == 4
+    aadl, back = to_aadl_and_back(seed, tmp_path, capsys)
+    folders = sorted(p.name for p in aadl.iterdir())
+    assert sorted(p.name for p in back.iterdir()) == folders and len(folders) == 4
     originals = {p.name.replace(" ", "_"): p for p in read_webgmex(seed)}  # the folders' names
     for folder in folders:
-        back, original = read_project(tmp_path / "back" / folder), originals[folder]
-        assert sorted(c.name for p in back.software.packages for c in p.components) == sorted(
-            c.name for p in original.software.packages for c in p.components
-        )
-        assert sorted(d.name for d in back.deployments) == sorted(d.name for d in original.deployments)
+        assert_same_components_and_deployments(originals[folder], read_project(back / folder))

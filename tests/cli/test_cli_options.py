@@ -11,9 +11,6 @@ import pytest
 from rosaadl import model
 from rosaadl.cli import cli, main
 
-ROOT = Path(__file__).resolve().parents[2]
-SYSTEMS = ROOT / "library" / "systems"
-
 
 def run(args: list[str], capsys) -> tuple[int, str, str]:
     code = main(args)
@@ -74,16 +71,6 @@ def test_a_bad_format_after_the_verb_is_a_usage_error(tmp_path, capsys) -> None:
     assert code == 2 and "yaml" in err
 
 
-def test_analyze_with_options_after_the_verb(capsys) -> None:
-    """The habit the issue names: ``rosaadl analyze M --root R --format json``."""
-    code, out, err = run(
-        ["analyze", str(SYSTEMS), "--root", "sys_rover::rover.impl", "--only", "cpu", "--format", "json"],
-        capsys,
-    )
-    assert code == 0, err
-    assert json.loads(out)["ok"] is True
-
-
 def test_sub_verbs_take_them_too(tmp_path, capsys) -> None:
     code, out, err = run(["library", "show", "ros", "--format", "json"], capsys)
     assert code == 0, err
@@ -95,18 +82,3 @@ def test_sub_verbs_take_them_too(tmp_path, capsys) -> None:
     )
     assert code == 0, err
     assert json.loads(out)["ok"] is True
-
-
-def test_debug_after_the_verb_shows_the_traceback(capsys) -> None:
-    @click.command("explode")
-    def explode() -> None:
-        raise KeyError("boom")
-
-    cli.add_command(explode)
-    try:
-        code, _, err = run(["explode"], capsys)
-        assert code == 3 and "Traceback" not in err
-        code, _, err = run(["explode", "--debug"], capsys)
-        assert code == 3 and "Traceback" in err
-    finally:
-        cli.commands.pop("explode")
