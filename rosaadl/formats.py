@@ -225,9 +225,11 @@ def check_inputs(paths: list[str | os.PathLike[str]], **options: Any) -> list[Ch
     """Read every input as the verbs read it; one :class:`Checked` per input, in the order given.
 
     AADL text given together (``.aadl``/``.aadl2`` files and folders of them) is one workspace,
-    read with the component library as ``instantiate`` and ``analyze`` read their inputs and as
-    OSATE resolves the files of a project: a package of one file may be named from another
-    (``with``, ``extends``, classifiers, property sets). Each finding goes to the input it is
+    read with the component library as ``instantiate`` and ``analyze`` read their inputs: package
+    and property set names lie in one global name space (AS5506C 4.2, "Packages"), which OSATE
+    fills with every AADL file of the project (and of the projects it references) and its
+    contributed property sets, so a package of one file may be named from another (``with``,
+    ``extends``, classifiers, property sets). Each finding goes to the input it is
     located in (the first AADL input when it is located elsewhere). Every other input (a rosaadl
     model, an ``.aaxl2``, a Cheddar file, a ROSMOD project) is read alone, with ``options``. A
     missing input, or one rosaadl has no reader for, is a :class:`UsageError` before any reading.
