@@ -22,7 +22,7 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl.arguments import checked, expect_path
-from rosaadl.errors import Diagnostic, RosaadlError, UsageError
+from rosaadl.errors import Diagnostic, NameResolutionError, RosaadlError, UsageError
 from rosaadl.fileio import existing
 
 __all__ = [
@@ -32,6 +32,8 @@ __all__ = [
     "reader_for",
     "read_input",
     "check_file",
+    "Checked",
+    "check_inputs",
     "expand_errors",
     "WriterOption",
     "Writer",
@@ -207,6 +209,90 @@ def check_file(
     except RosaadlError as exc:
         return expand_errors(exc), []
     return [], loaded.warnings
+
+
+@dataclass
+class Checked:
+    """What :func:`check_inputs` found in one input: its errors and its warnings."""
+
+    path: Path
+    errors: list[RosaadlError | Diagnostic] = field(default_factory=list)
+    warnings: list[Diagnostic] = field(default_factory=list)
+
+
+@checked
+def check_inputs(paths: list[str | os.PathLike[str]], **options: Any) -> list[Checked]:
+    """Read every input as the verbs read it; one :class:`Checked` per input, in the order given.
+
+    AADL text given together (``.aadl``/``.aadl2`` files and folders of them) is one workspace,
+    read with the component library as ``instantiate`` and ``analyze`` read their inputs: package
+    and property set names lie in one global name space (AS5506C 4.2, "Packages"), which OSATE
+    fills with every AADL file of the project (and of the projects it references) and its
+    contributed property sets, so a package of one file may be named from another (``with``,
+    ``extends``, classifiers, property sets). Each finding goes to the input it is
+    located in (the first AADL input when it is located elsewhere). Every other input (a rosaadl
+    model, an ``.aaxl2``, a Cheddar file, a ROSMOD project) is read alone, with ``options``. A
+    missing input, or one rosaadl has no reader for, is a :class:`UsageError` before any reading.
+    """
+    given = [expect_path(path) for path in paths]
+    for path in given:
+        if not existing(path):
+            raise UsageError("no such file or folder", file=str(path))
+    kinds = [reader_for(path).name for path in given]
+    results = [Checked(path) for path in given]
+    workspace = [result for result, kind in zip(results, kinds, strict=True) if kind == "aadl"]
+    if workspace:
+        errors, warnings = _check_aadl_workspace([result.path for result in workspace])
+        for item in errors:
+            _input_of(item, workspace).errors.append(item)
+        for warning in warnings:
+            _input_of(warning, workspace).warnings.append(warning)
+    for result, kind in zip(results, kinds, strict=True):
+        if kind != "aadl":
+            result.errors, result.warnings = check_file(result.path, **options)
+    return results
+
+
+def _check_aadl_workspace(paths: list[Path]) -> tuple[list[RosaadlError | Diagnostic], list[Diagnostic]]:
+    """(errors, warnings) of AADL files and folders read together with the library. A file that
+    does not read (syntax, legality rules) stops the reading of the workspace: then every input is
+    read alone, so that each one's own errors are all reported, and names are not resolved."""
+    from rosaadl.importers import aadl_text
+
+    warnings: list[Diagnostic] = []
+    try:
+        aadl_text.read_files(paths, warnings=warnings)
+    except UsageError:
+        raise
+    except NameResolutionError as exc:
+        return expand_errors(exc), warnings
+    except RosaadlError:
+        pass
+    else:
+        return [], warnings
+    errors: list[RosaadlError | Diagnostic] = []
+    warnings = []
+    for path in paths:
+        try:
+            aadl_text.read_files([path], include_library=False, check=False, warnings=warnings)
+        except UsageError:
+            raise
+        except RosaadlError as exc:
+            errors.extend(expand_errors(exc))
+    warnings.append(Diagnostic("warning", "names are not resolved across the files until every file reads"))
+    return errors, warnings
+
+
+def _input_of(item: RosaadlError | Diagnostic, inputs: list[Checked]) -> Checked:
+    """The input ``item`` is located in: that file, or the folder that holds it."""
+    where = item.location.file
+    if where:
+        found = Path(where).resolve()
+        for candidate in inputs:
+            given = candidate.path.resolve()
+            if found == given or given in found.parents:
+                return candidate
+    return inputs[0]
 
 
 # =============================================================================== writers

@@ -9,22 +9,31 @@ import traceback
 import click
 
 from rosaadl import __version__
-from rosaadl.cli.common import EXIT_ERRORS, EXIT_INTERNAL, EXIT_USAGE, Options
+from rosaadl.cli.common import (
+    DEBUG_HELP,
+    EXIT_ERRORS,
+    EXIT_INTERNAL,
+    EXIT_USAGE,
+    FORMAT_HELP,
+    FORMATS,
+    Options,
+    VerbGroup,
+)
 from rosaadl.errors import RosaadlError, UsageError
 
 __all__ = ["cli", "main"]
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=VerbGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.option(
     "--format",
     "fmt",
-    type=click.Choice(["text", "json"]),
+    type=click.Choice(FORMATS),
     default="text",
     show_default=True,
-    help="Output format of results on stdout.",
+    help=f"{FORMAT_HELP} Also accepted after the verb.",
 )
-@click.option("--debug", is_flag=True, help="Show tracebacks of internal errors.")
+@click.option("--debug", is_flag=True, help=f"{DEBUG_HELP} Also accepted after the verb.")
 @click.option("-v", "--verbose", count=True, help="More progress output on stderr (repeatable).")
 @click.option("-q", "--quiet", count=True, help="Less output on stderr (repeatable).")
 @click.version_option(__version__, prog_name="rosaadl")

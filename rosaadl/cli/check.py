@@ -1,4 +1,9 @@
-"""``rosaadl check INPUT...``: read inputs with the reader that knows them and report every problem."""
+"""``rosaadl check INPUT...``: read inputs with the reader that knows them and report every problem.
+
+AADL text given together (files and folders) is checked as one workspace, as ``instantiate``,
+``analyze`` and OSATE read it, so ``rosaadl check *.aadl`` resolves the packages the files name
+in each other; every other input is checked alone (:func:`rosaadl.formats.check_inputs`).
+"""
 
 from __future__ import annotations
 
@@ -8,7 +13,7 @@ from pathlib import Path
 import click
 
 from rosaadl.cli.common import Options, Report, inputs_argument, pass_options
-from rosaadl.formats import check_file
+from rosaadl.formats import check_inputs
 
 __all__ = ["command"]
 
@@ -19,17 +24,18 @@ __all__ = ["command"]
 @pass_options
 def command(options: Options, inputs: tuple[Path, ...], strict: bool) -> None:
     """Validate inputs: rosaadl models (.xmi/.json), AADL text, OSATE .aaxl2, Cheddar XML,
-    ROSMOD projects (folders, .rml, .webgmex)."""
+    ROSMOD projects (folders, .rml, .webgmex). AADL files and folders given together are one
+    workspace: a package of one may be named from another."""
     report = Report()
     checked = []
-    for path in inputs:
-        errors, warnings = check_file(path, strict=strict)
+    for result in check_inputs(list(inputs), strict=strict):
+        errors, warnings = result.errors, result.warnings
         for error in errors:
             report.error(error)
         for warning in warnings:
             report.warn(warning)
-        checked.append({"file": str(path), "errors": len(errors), "warnings": len(warnings)})
+        checked.append({"file": str(result.path), "errors": len(errors), "warnings": len(warnings)})
         status = "ok" if not errors else f"{len(errors)} error(s)"
-        report.say(f"{path}: {status}" + (f", {len(warnings)} warning(s)" if warnings else ""))
+        report.say(f"{result.path}: {status}" + (f", {len(warnings)} warning(s)" if warnings else ""))
     report.data["files"] = checked
     sys.exit(report.emit(options))

@@ -7,6 +7,11 @@ With ``--format json`` stdout carries exactly one JSON document::
     {"ok": bool, "errors": [{"message", "file", "line", "column", "path", ...}], "warnings": [...], ...}
 
 Progress and logs go to stderr; data goes to stdout or files.
+
+The run options ``--format`` and ``--debug`` go before the verb (``rosaadl --format json check
+x``) or after it (``rosaadl check x --format json``), as users of ``git`` and ``ros2`` type
+them: :class:`VerbGroup` gives every verb and sub-verb its own copy of them
+(:func:`accept_run_options`); given in both places, the one after the verb wins.
 """
 
 from __future__ import annotations
@@ -24,6 +29,8 @@ from rosaadl.errors import Diagnostic, RosaadlError
 __all__ = [
     "Options",
     "Report",
+    "VerbGroup",
+    "accept_run_options",
     "EXIT_OK",
     "EXIT_ERRORS",
     "EXIT_USAGE",
@@ -34,6 +41,9 @@ __all__ = [
     "root_option",
     "lenient_option",
     "time_unit_option",
+    "FORMATS",
+    "FORMAT_HELP",
+    "DEBUG_HELP",
 ]
 
 EXIT_OK = 0
@@ -56,6 +66,62 @@ class Options:
 
 
 pass_options = click.make_pass_decorator(Options, ensure=True)
+
+FORMATS = ("text", "json")
+FORMAT_HELP = "Output format of results on stdout."
+DEBUG_HELP = "Show tracebacks of internal errors."
+
+
+def _given_format(ctx: click.Context, _param: click.Parameter, value: str | None) -> None:
+    if value is not None:
+        ctx.ensure_object(Options).format = value
+
+
+def _given_debug(ctx: click.Context, _param: click.Parameter, value: bool) -> None:
+    if value:
+        ctx.ensure_object(Options).debug = True
+
+
+def _run_options() -> list[click.Option]:
+    """``--format`` and ``--debug`` as a verb takes them: they set the invocation's
+    :class:`Options` (given to the verb by :data:`pass_options`) and are not passed themselves."""
+    return [
+        click.Option(
+            ["--format", "run_format"],
+            type=click.Choice(FORMATS),
+            default=None,
+            expose_value=False,
+            callback=_given_format,
+            help=f"{FORMAT_HELP} [default: text]",
+        ),
+        click.Option(
+            ["--debug", "run_debug"],
+            is_flag=True,
+            default=False,
+            expose_value=False,
+            callback=_given_debug,
+            help=DEBUG_HELP,
+        ),
+    ]
+
+
+def accept_run_options(command: click.Command) -> click.Command:
+    """Let ``command``, and every sub-command of it when it is a group, take ``--format`` and
+    ``--debug`` after its name; a command that already takes them is left as it is."""
+    taken = {opt for param in command.params for opt in getattr(param, "opts", ())}
+    command.params.extend(option for option in _run_options() if option.opts[0] not in taken)
+    if isinstance(command, click.Group):
+        for sub in command.commands.values():
+            accept_run_options(sub)
+    return command
+
+
+class VerbGroup(click.Group):
+    """The ``rosaadl`` group: each verb added to it takes the run options after its name too."""
+
+    def add_command(self, cmd: click.Command, name: str | None = None) -> None:
+        super().add_command(accept_run_options(cmd), name)
+
 
 F = TypeVar("F", bound=Callable[..., Any])
 

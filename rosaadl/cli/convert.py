@@ -33,7 +33,8 @@ __all__ = ["command"]
     "--trace",
     "trace_file",
     type=click.Path(path_type=Path),
-    help="Trace file (.xmi or .json): written by ROSMOD -> AADL, read by AADL -> ROSMOD to keep names.",
+    help="Trace file (.xmi or .json): written by ROSMOD -> AADL, read by AADL -> ROSMOD to keep names "
+    "(several projects: one per project, <stem>_<project folder><suffix>).",
 )
 @click.option("--root", "roots", multiple=True, help="AADL -> ROSMOD: system implementation(s) to convert.")
 @pass_options
@@ -62,8 +63,6 @@ def command(
                 inputs[0], out, project=project, trace_file=trace_file, warnings=warnings
             )
         else:
-            if trace_file is not None and not trace_file.exists():
-                raise UsageError("no such trace file", file=str(trace_file))
             from rosaadl.workflow.convert import convert_aadl_files
 
             written = convert_aadl_files(

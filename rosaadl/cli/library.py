@@ -15,7 +15,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 from pathlib import Path
 from typing import Any
@@ -27,20 +26,6 @@ from rosaadl.errors import Diagnostic, RosaadlError, UsageError
 from rosaadl.formats import expand_errors
 
 __all__ = ["command"]
-
-
-def _format_option(function):
-    return click.option(
-        "--format",
-        "fmt",
-        type=click.Choice(["text", "json"]),
-        default=None,
-        help="Output format of results on stdout (overrides the global --format).",
-    )(function)
-
-
-def _options(options: Options, fmt: str | None) -> Options:
-    return dataclasses.replace(options, format=fmt) if fmt else options
 
 
 def _fail(report: Report, options: Options, exc: RosaadlError) -> None:
@@ -59,13 +44,11 @@ def command() -> None:
 
 @command.command("list")
 @click.argument("inputs", nargs=-1, type=click.Path(path_type=Path))
-@_format_option
 @pass_options
-def list_command(options: Options, inputs: tuple[Path, ...], fmt: str | None) -> None:
+def list_command(options: Options, inputs: tuple[Path, ...]) -> None:
     """List every package and property set with its components (INPUTs: more AADL files or folders)."""
     from rosaadl.workflow.library_catalog import list_packages, read_library
 
-    options = _options(options, fmt)
     report = Report()
     notes: list[Diagnostic] = []
     try:
@@ -98,13 +81,11 @@ def list_command(options: Options, inputs: tuple[Path, ...], fmt: str | None) ->
 @command.command("show")
 @click.argument("name")
 @click.argument("inputs", nargs=-1, type=click.Path(path_type=Path))
-@_format_option
 @pass_options
-def show_command(options: Options, name: str, inputs: tuple[Path, ...], fmt: str | None) -> None:
+def show_command(options: Options, name: str, inputs: tuple[Path, ...]) -> None:
     """Show what NAME is: a package, a property set, Pkg::T, Pkg::T.impl or an unqualified name."""
     from rosaadl.workflow.library_catalog import ComponentNotFound, describe, read_library
 
-    options = _options(options, fmt)
     report = Report()
     notes: list[Diagnostic] = []
     try:
@@ -226,17 +207,13 @@ def _unit_lines(info: dict[str, Any]) -> list[str]:
 @click.argument("measurements", type=click.Path(path_type=Path))
 @click.argument("inputs", nargs=-1, type=click.Path(path_type=Path))
 @output_option("Folder to write the profile packages into (<node package>_profiles.aadl).")
-@_format_option
 @pass_options
-def add_profile_command(
-    options: Options, measurements: Path, inputs: tuple[Path, ...], out: Path, fmt: str | None
-) -> None:
+def add_profile_command(options: Options, measurements: Path, inputs: tuple[Path, ...], out: Path) -> None:
     """Turn a CSV of measurements into PDM implementations of library nodes (INPUTs: AADL files or
     folders with nodes that are not in the library). Columns: node, thread, board, core, period_us,
     cet_us, mips_raw, ipc, data_size_bytes [, processor]."""
     from rosaadl.workflow.library_add_profile import add_profiles
 
-    options = _options(options, fmt)
     report = Report()
     notes: list[Diagnostic] = []
     report.data.update({"input": str(measurements), "output": str(out)})

@@ -104,6 +104,8 @@ def test_internal_errors_exit_3_without_traceback_unless_debug(capsys) -> None:
         assert code == 3 and "internal error" in err and "Traceback" not in err
         code, _, err = run_main(["--debug", "explode"], capsys)
         assert code == 3 and "Traceback" in err
+        code, _, err = run_main(["explode", "--debug"], capsys)  # after the verb, too
+        assert code == 3 and "Traceback" in err
     finally:
         cli.commands.pop("explode")
 

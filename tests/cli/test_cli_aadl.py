@@ -166,3 +166,13 @@ def test_generate_rclpy_keeps_user_code_and_writes_nothing_on_dry_run(tmp_path: 
     code, _, err = run([*args, "--dry-run"], capsys)
     assert code == 0, err
     assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+
+
+def test_analyze_with_options_after_the_verb(capsys) -> None:
+    """Options after the verb, as users type them: ``rosaadl analyze M --root R --format json``."""
+    code, out, err = run(
+        ["analyze", str(SYSTEMS), "--root", "sys_rover::rover.impl", "--only", "cpu", "--format", "json"],
+        capsys,
+    )
+    assert code == 0, err
+    assert json.loads(out)["ok"] is True
