@@ -496,11 +496,7 @@ def blocking_times(tasks: Sequence[Task], taskset: TaskSet) -> dict[str, Time | 
                     unbounded = True
                 if protocol in (Protocol.PIP, Protocol.NONE):
                     pcp_only = False
-                length = max(
-                    s.end - s.start
-                    for s in other.critical_sections
-                    if s.start <= section.start and section.end <= s.end
-                )
+                length = other.outermost_section(section)
                 by_resource[section.resource] = max(by_resource.get(section.resource, 0), length)
                 by_task[other.name] = max(by_task.get(other.name, 0), length)
         if unbounded:
