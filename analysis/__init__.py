@@ -8,7 +8,8 @@
   :mod:`~rosaadl.analysis.demand`, OSATE's ``sumBudgets``);
 * :mod:`~rosaadl.analysis.busload`: OSATE's bus load analysis and its CSV report;
 * :mod:`~rosaadl.analysis.schedulability`: Cheddar's feasibility tests and response times
-  (:mod:`~rosaadl.analysis.partitioning`: tasks onto cores, as Cheddar partitions them);
+  (:mod:`~rosaadl.analysis.edf_response`: Spuri's response times under EDF;
+  :mod:`~rosaadl.analysis.partitioning`: tasks onto cores, as Cheddar partitions them);
 * :mod:`~rosaadl.analysis.simulation`: event-driven scheduling simulation (its engine in
   :mod:`~rosaadl.analysis.simulation_engine`);
 * :mod:`~rosaadl.analysis.latency`: end-to-end latency of thread chains;
@@ -27,6 +28,7 @@ from __future__ import annotations
 from rosaadl.analysis import budgets as _budgets
 from rosaadl.analysis import busload as _busload
 from rosaadl.analysis import deployment as _deployment
+from rosaadl.analysis import edf_response as _edf_response
 from rosaadl.analysis import instance_values as _instance_values
 from rosaadl.analysis import latency as _latency
 from rosaadl.analysis import partitioning as _partitioning
@@ -39,6 +41,7 @@ from rosaadl.analysis import tasks as _tasks
 from rosaadl.analysis.budgets import *  # noqa: F403
 from rosaadl.analysis.busload import *  # noqa: F403
 from rosaadl.analysis.deployment import *  # noqa: F403
+from rosaadl.analysis.edf_response import *  # noqa: F403
 from rosaadl.analysis.instance_values import *  # noqa: F403
 from rosaadl.analysis.latency import *  # noqa: F403
 from rosaadl.analysis.partitioning import *  # noqa: F403
@@ -55,6 +58,7 @@ __all__ = list(
             *_tasks.__all__,
             *_instance_values.__all__,
             *_schedulability.__all__,
+            *_edf_response.__all__,
             *_partitioning.__all__,
             *_simulation.__all__,
             *_resources.__all__,

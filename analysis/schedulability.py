@@ -13,7 +13,9 @@ Per scheduling domain (a processor, or one core of a partitioned multi-core proc
   the shortest; equal periods keep task order: the task listed first gets the higher priority);
 * worst-case response times: preemptive fixed priority with release jitter and blocking
   (Tindell's busy window, Cheddar's equation), and non-preemptive fixed priority (George et
-  al., Cheddar's discrete-time blocking max(C_lp) − 1);
+  al., Cheddar's discrete-time blocking max(C_lp) − 1); under EDF, preemptive or not, Spuri's
+  deadline busy periods with arbitrary deadlines, jitter and blocking
+  (:mod:`~rosaadl.analysis.edf_response`; LLF gets none);
 * best-fit / first-fit / next-fit partitioning of tasks onto processors or cores (Cheddar's
   Rate-Monotonic Best Fit and companions: utilisation bound and the IP condition).
 
@@ -30,6 +32,7 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
+from rosaadl.analysis.edf_response import edf_blocking_times, edf_response_times
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, short_path, table
 from rosaadl.analysis.tasks import (
@@ -496,11 +499,7 @@ def blocking_times(tasks: Sequence[Task], taskset: TaskSet) -> dict[str, Time | 
                     unbounded = True
                 if protocol in (Protocol.PIP, Protocol.NONE):
                     pcp_only = False
-                length = max(
-                    s.end - s.start
-                    for s in other.critical_sections
-                    if s.start <= section.start and section.end <= s.end
-                )
+                length = other.outermost_section(section)
                 by_resource[section.resource] = max(by_resource.get(section.resource, 0), length)
                 by_task[other.name] = max(by_task.get(other.name, 0), length)
         if unbounded:
@@ -619,6 +618,14 @@ class SchedulabilityResult:
         return {"processors": [d.as_dict() for d in self.domains]}
 
 
+_UNBOUNDED_BLOCKING = {
+    "fp": "a lower-priority task shares a resource without access protocol with it while a task "
+    "of intermediate priority exists",
+    "edf": "a task with a later deadline shares a resource without access protocol with it while "
+    "a third task runs on the processor",
+}
+
+
 def _uses_resources(tasks: Sequence[Task]) -> bool:
     return any(t.critical_sections for t in tasks)
 
@@ -651,8 +658,9 @@ def _analyze_domain(
     wcrt: dict[str, Time | None] = {}
     rta: bool | None = None
     unbounded_blocking: set[str] = set()
-    if scheduler.fixed_priority and periodic and processor.preemptive and _uses_resources(periodic):
-        blocking = blocking_times(periodic, taskset)
+    edf = scheduler is Scheduler.EARLIEST_DEADLINE_FIRST
+    if (scheduler.fixed_priority or edf) and periodic and processor.preemptive and _uses_resources(periodic):
+        blocking = edf_blocking_times(periodic, taskset) if edf else blocking_times(periodic, taskset)
         unbounded_blocking = {name for name, b in blocking.items() if b is None}
         tasks = tuple(
             replace(t, blocking=blocking[t.name]) if blocking.get(t.name) is not None else t for t in tasks
@@ -663,14 +671,16 @@ def _analyze_domain(
                 diagnostics.append(
                     Diagnostic(
                         "warning",
-                        "a lower-priority task shares a resource without access protocol with it while "
-                        "a task of intermediate priority exists: its blocking is unbounded, no "
+                        f"{_UNBOUNDED_BLOCKING['edf' if edf else 'fp']}: its blocking is unbounded, no "
                         "response time is computed",
                         Location(path=task.path),
                     )
                 )
-    if scheduler.fixed_priority and periodic:
-        wcrt = response_times(periodic, preemptive=processor.preemptive)
+    if (scheduler.fixed_priority or edf) and periodic:
+        if edf:
+            wcrt = edf_response_times(periodic, preemptive=processor.preemptive)
+        else:
+            wcrt = response_times(periodic, preemptive=processor.preemptive)
         for name in unbounded_blocking:
             wcrt.pop(name, None)
         rta = all(
@@ -730,12 +740,7 @@ def _analyze_domain(
         )
     elif verdict is False:
         diagnostics.append(
-            Diagnostic(
-                "info",
-                f"utilisation {float(u):.5f} is above the bound {bound:.5f}: the utilisation test is "
-                "inconclusive, the response times decide",
-                where,
-            )
+            Diagnostic("info", _utilisation_note(scheduler, processor.preemptive, periodic, bound), where)
         )
     if interval is not None and not interval.validated:
         diagnostics.append(
@@ -760,6 +765,27 @@ def _analyze_domain(
         interval,
         unused,
         rta,
+    )
+
+
+def _utilisation_note(scheduler: Scheduler, preemptive: bool, tasks: Sequence[Task], bound: float) -> str:
+    """Why the utilisation test failed while the response times decide, in the test's terms."""
+    u = utilization(tasks)
+    if scheduler is Scheduler.EARLIEST_DEADLINE_FIRST:
+        if u > 1:
+            return f"utilisation {float(u):.5f} is above 1: the processor is overloaded"
+        if not preemptive:
+            return (
+                f"Jeffay's non-preemptive condition fails (utilisation {float(u):.5f}): "
+                "the response times decide"
+            )
+        return (
+            f"utilisation by deadline {float(utilization_by_deadline(tasks)):.5f} is above 1: the "
+            "utilisation test is inconclusive, the response times decide"
+        )
+    return (
+        f"utilisation {float(u):.5f} is above the bound {bound:.5f}: the utilisation test is "
+        "inconclusive, the response times decide"
     )
 
 

@@ -315,6 +315,15 @@ class Task:
         """C / T (0 for a task without period)."""
         return Fraction(self.capacity) / self.period if self.period is not None else Fraction(0)
 
+    def outermost_section(self, section: CriticalSection) -> Time:
+        """Length of the task's outermost critical section around ``section`` (its own length
+        when it is not nested): how long the task may hold a resource once it locked it."""
+        return max(
+            s.end - s.start
+            for s in self.critical_sections
+            if s.start <= section.start <= section.end <= s.end
+        )
+
     @property
     def resources(self) -> tuple[str, ...]:
         """Names of the resources the task locks, in first-use order."""
