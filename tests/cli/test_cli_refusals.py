@@ -1,0 +1,37 @@
+"""Inputs the command line refuses with a located reason and exit code 1, never a usage error
+(exit 2) nor a success that wrote nothing."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from rosaadl.cli import main
+from tests.importers.test_rosmod_webgme import _n, build_export, write_export
+
+
+def run(args: list[str], capsys) -> tuple[int, str, str]:
+    code = main(args)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def _no_project_reasons(archive: Path, tmp_path: Path, capsys) -> None:
+    out = tmp_path / "out"
+    for args in (["check", str(archive)], ["convert", str(archive), "-o", str(out)]):
+        code, _, err = run(args, capsys)
+        assert code == 1, (args, err)
+        assert f"error: {archive}: the archive holds no ROSMOD project" in err
+    assert not out.exists()
+
+
+def test_webgmex_without_a_project_is_refused_by_check_and_convert(tmp_path: Path, capsys) -> None:
+    """A ``.webgmex`` whose tree holds a META but no node of type Project: nothing to read."""
+    archive = write_export(tmp_path / "empty.webgmex", build_export(_n("Projects", "Ps", {})))
+    _no_project_reasons(archive, tmp_path, capsys)
+
+
+@pytest.mark.corpus
+def test_meta_only_webgmex_is_refused_by_check_and_convert(corpus: Path, tmp_path: Path, capsys) -> None:
+    _no_project_reasons(corpus / "rosmod/webgme/meta-2018-07.webgmex", tmp_path, capsys)
