@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from rosaadl.cli import main
+from tests.importers.test_aaxl2 import GOOD, D, _replace
 from tests.importers.test_rosmod_webgme import _n, build_export, write_export
 
 
@@ -35,3 +36,23 @@ def test_webgmex_without_a_project_is_refused_by_check_and_convert(tmp_path: Pat
 @pytest.mark.corpus
 def test_meta_only_webgmex_is_refused_by_check_and_convert(corpus: Path, tmp_path: Path, capsys) -> None:
     _no_project_reasons(corpus / "rosmod/webgme/meta-2018-07.webgmex", tmp_path, capsys)
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ("@ownedPropertyType.16/", "@ownedPropertyType.-1/"),  # a predeclared unit's href
+        ("@ownedLiteral.2", "@ownedLiteral.1_0"),
+        (f"{D}0/@ownedDataPort.0", f"{D}0/@ownedDataPort.-1"),  # a link into the declarative model
+    ],
+)
+def test_aaxl2_positions_that_are_not_list_indexes_are_located_errors(
+    old: str, new: str, tmp_path: Path, capsys
+) -> None:
+    """EMF reads ``@feature.k`` with ``Integer.parseInt``: ``-1`` and ``1_0`` name no item."""
+    path = tmp_path / "bad_Instance.aaxl2"
+    path.write_bytes(_replace(GOOD, old, new))
+    code, _, err = run(["check", str(path)], capsys)
+    assert code == 1, err
+    position = new.rpartition(".")[2].rstrip("/")
+    assert f"error: {path}:" in err and f"position {position!r}" in err and "/@href" in err
