@@ -56,3 +56,28 @@ def test_aaxl2_positions_that_are_not_list_indexes_are_located_errors(
     assert code == 1, err
     position = new.rpartition(".")[2].rstrip("/")
     assert f"error: {path}:" in err and f"position {position!r}" in err and "/@href" in err
+
+
+CYCLIC_CONSTANTS = """property set Cyc is
+  A : constant aadlinteger => Cyc::B;
+  B : constant aadlinteger => Cyc::A;
+  Alone : constant aadlinteger => 3;
+  Uses : constant list of aadlinteger => (Cyc::Alone, 4);
+  Self : constant aadlinteger => 1 .. Cyc::Self;
+end Cyc;
+"""
+
+
+def test_cyclic_property_constants_are_reported_at_check_with_the_cycle(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "cyc.aadl"
+    path.write_text(CYCLIC_CONSTANTS)
+    code, _, err = run(["check", str(path)], capsys)
+    assert code == 1, err
+    assert (
+        f"{path}:2:3 Cyc::A: error: property constants defined in a cycle: Cyc::A => Cyc::B; Cyc::B => Cyc::A"
+        in err
+    )
+    assert (
+        f"{path}:6:3 Cyc::Self: error: property constants defined in a cycle: Cyc::Self => Cyc::Self" in err
+    )
+    assert err.count("cycle") == 2  # Alone and Uses are no cycle
