@@ -81,3 +81,29 @@ def test_cyclic_property_constants_are_reported_at_check_with_the_cycle(tmp_path
         f"{path}:6:3 Cyc::Self: error: property constants defined in a cycle: Cyc::Self => Cyc::Self" in err
     )
     assert err.count("cycle") == 2  # Alone and Uses are no cycle
+
+
+SECRET = "package Secret\npublic\n  system S\n  SECRET_LINE is here;\nend Secret;\n"
+
+
+def test_a_syntax_error_in_a_file_linked_from_outside_the_input_quotes_none_of_it(
+    tmp_path: Path, capsys
+) -> None:
+    """The error names the link and its line, never the outside file's text."""
+    outside, project = tmp_path / "outside", tmp_path / "project"
+    outside.mkdir()
+    project.mkdir()
+    (outside / "secret.aadl").write_text(SECRET)
+    (project / "linked.aadl").symlink_to(outside / "secret.aadl")
+    (project / "folder").symlink_to(outside, target_is_directory=True)
+    for given, named in (
+        (project, project / "linked.aadl"),
+        (project / "linked.aadl", project / "linked.aadl"),
+        (project / "folder", project / "folder" / "secret.aadl"),
+    ):
+        code, out, err = run(["check", str(given)], capsys)
+        assert code == 1, err
+        assert f"error: {named}:4:3: unexpected text (not shown" in err
+        assert "SECRET" not in err + out and "'S'" not in err
+    code, _, err = run(["check", str(outside / "secret.aadl")], capsys)  # inside what was given
+    assert code == 1 and "unexpected 'SECRET_LINE' after 'S'" in err
