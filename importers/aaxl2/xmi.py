@@ -196,12 +196,16 @@ def fragment_index_problem(fragment: str) -> str | None:
     takes the ``k``-th item of the feature's list (``EObjectImpl.eObjectForURIFragmentSegment``),
     and a root segment ``/k`` as the ``k``-th root (``ResourceImpl.getEObject``): a negative
     position fails there (``IndexOutOfBoundsException``), as does a number Java cannot parse
-    (``1_0``, an empty one). A position is ASCII digits, nothing else.
+    (``1_0``, an empty one). A position is ASCII digits, nothing else (OSATE never writes a
+    sign, so ``+2``, which Java would read as 2, is refused too). A keyed segment
+    (``@feature[name='a.b']``) holds no position.
     """
     if not is_positional(fragment):
         return None
     for number, segment in enumerate(fragment.split("/")):
         if segment.startswith("@"):
+            if "[" in segment:
+                continue
             _feature, dot, position = segment.rpartition(".")
             if dot and not _POSITION.fullmatch(position):
                 return f"position {position!r} of {segment!r} is not a list index (digits 0-9)"
