@@ -470,7 +470,11 @@ def _shorten(text: str, limit: int = 40) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def _syntax_error(exc: _Unexpected, text: str, filename: str) -> AadlSyntaxError:
+#: what a syntax error says instead of the text it met, for a file that must not be echoed
+_NOT_SHOWN = "(not shown: the file lies outside the input folder)"
+
+
+def _syntax_error(exc: _Unexpected, text: str, filename: str, quote: bool = True) -> AadlSyntaxError:
     expected = _reader().expected(exc.stack)
     if not expected:
         wanted = ""
@@ -487,6 +491,9 @@ def _syntax_error(exc: _Unexpected, text: str, filename: str) -> AadlSyntaxError
         message = "unterminated annex text: '{**' without a closing '**}'"
     elif kind == _UNTERMINATED_STRING:
         message = "unterminated string literal: '\"' without a closing '\"'"
+    elif not quote:
+        what = "character" if kind == _BAD_CHARACTER else "text"
+        message = f"unexpected {what} {_NOT_SHOWN}{wanted}"
     elif kind == _BAD_CHARACTER:
         message = f"unexpected character {value!r}{wanted}"
     else:
@@ -496,13 +503,15 @@ def _syntax_error(exc: _Unexpected, text: str, filename: str) -> AadlSyntaxError
     return AadlSyntaxError(message, file=filename, line=line, column=column)
 
 
-def parse(text: str | bytes, filename: str = "<string>") -> Tree[Token]:
+def parse(text: str | bytes, filename: str = "<string>", *, quote: bool = True) -> Tree[Token]:
     """Parse AADL text into a lark tree rooted at a ``specification`` node.
 
     ``text`` is a ``str`` or UTF-8 ``bytes`` (a leading byte-order mark is dropped).  The
     children of the root are ``package`` and ``property_set`` nodes; see ``aadl.lark`` for the
     layout of every node.  Raises :class:`AadlSyntaxError` (file, line, column, and what was
-    expected) on any syntax or encoding error.
+    expected) on any syntax or encoding error; without ``quote`` its message holds nothing of
+    the text (not the token met, nor the one before it), for a file whose content must not be
+    echoed (one reached through a symbolic link out of the folder the user named).
 
     The cyclic garbage collector is paused while the tree is built: the tree has no cycles,
     and collections triggered by its many new objects would make large inputs 2-3x slower.
@@ -518,7 +527,7 @@ def parse(text: str | bytes, filename: str = "<string>") -> Tree[Token]:
     try:
         return reader.parse(text)
     except _Unexpected as exc:
-        raise _syntax_error(exc, text, filename) from None
+        raise _syntax_error(exc, text, filename, quote) from None
     finally:
         if collecting:
             gc.enable()

@@ -110,14 +110,10 @@ def _read_rosmod_text(path: Path, *, strict: bool = False, **_: Any) -> Loaded:
 
 
 def _read_webgmex(path: Path, *, project: str | None = None, **_: Any) -> Loaded:
-    from rosaadl.importers import rosmod_webgme
+    from rosaadl.importers.rosmod_webgme.projects import read_webgmex_projects
 
     warnings: list[Diagnostic] = []
-    projects = rosmod_webgme.read_webgmex(path, project=project, warnings=warnings)
-    if not projects:
-        raise UsageError(
-            "the archive holds no ROSMOD project" + (f" named {project!r}" if project else ""), file=str(path)
-        )
+    projects = read_webgmex_projects(path, project=project, warnings=warnings)
     return Loaded(list(projects), warnings, kind="rosmod")
 
 

@@ -64,9 +64,10 @@ def _report(diagnostics: Iterable[Diagnostic], warnings: list[Diagnostic] | None
             warnings.append(diagnostic)
 
 
-def _build(text: str | bytes, filename: str) -> tuple[list[EObject], list[Diagnostic]]:
-    """Parse and build one text; the new units (not yet added to a model) and warnings."""
-    tree = parse(text, filename)
+def _build(text: str | bytes, filename: str, *, quote: bool = True) -> tuple[list[EObject], list[Diagnostic]]:
+    """Parse and build one text; the new units (not yet added to a model) and warnings.
+    Without ``quote`` a syntax error shows nothing of the text (:func:`parse`)."""
+    tree = parse(text, filename, quote=quote)
     if isinstance(text, bytes | bytearray | memoryview):  # the builder slices the decoded text
         text = bytes(text).decode("utf-8-sig")
     if text.startswith("\ufeff"):
@@ -139,20 +140,31 @@ def _aadl_files_under(folder: Path) -> list[Path]:
     return [path for _, path in sorted(found)]
 
 
-def _expand(paths: Iterable[str | os.PathLike[str]], seen: set[Path]) -> list[Path]:
-    """Files as given and the AADL files under folders; files already in ``seen`` (resolved
-    paths) are left out, so that a file named twice is read once."""
-    out: list[Path] = []
+def _input_root(path: Path) -> Path:
+    """The folder whose files an input names: a folder given (its own name kept even when it
+    is a symbolic link), or the folder of a file given; the folders above it resolved."""
+    absolute = Path(os.path.abspath(path))
+    parent = absolute.parent.resolve()
+    return parent / absolute.name if path.is_dir() else parent
+
+
+def _expand(paths: Iterable[str | os.PathLike[str]], seen: set[Path]) -> list[tuple[Path, bool]]:
+    """Files as given and the AADL files under folders, each with whether its real path lies
+    inside the input that named it (not reached through a symbolic link out of it: such a
+    file's syntax errors quote none of its text); files already in ``seen`` (resolved paths)
+    are left out, so that a file named twice is read once."""
+    out: list[tuple[Path, bool]] = []
     for item in paths:
         path = expect_path(item, "an AADL file or folder")
         if not existing(path, ParseError):
             raise ParseError("no such file or folder", file=str(path))
+        root = _input_root(path)
         found = _aadl_files_under(path) if path.is_dir() else [path]
         for file in found:
             key = file.resolve()
             if key not in seen:
                 seen.add(key)
-                out.append(file)
+                out.append((file, key.is_relative_to(root)))
     return out
 
 
@@ -205,8 +217,8 @@ def read_files(
                 library_units.setdefault(unit.name.lower(), unit)
             if units:
                 add(model, "units", *units)
-    for path in files:
-        units, unit_notes = _build(_read_bytes(path), str(path))
+    for path, inside in files:
+        units, unit_notes = _build(_read_bytes(path), str(path), quote=inside)
         notes.extend(unit_notes)
         for unit in units:
             replaced = library_units.pop(unit.name.lower(), None)

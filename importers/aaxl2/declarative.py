@@ -123,6 +123,7 @@ class DeclarativeReader:
         if text is None:
             return None
         xsi_type, uri, frag = split_ref_attribute(text)
+        self.r.check_fragment(frag, element, attribute)
         if uri:
             if frag and not is_positional(frag):
                 name = qualified_name(frag, link_class(xsi_type))

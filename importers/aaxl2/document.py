@@ -25,7 +25,16 @@ from rosaadl.errors import Diagnostic, ImportFormatError, Location, RosaadlError
 from rosaadl.importers import osate_eras
 
 from .metamodel import metamodel_facts
-from .xmi import NS_AADL2, XMI_ID_KEY, XSI_TYPE, XSI_TYPE_KEY, link_class, name_of, split_ref_attribute
+from .xmi import (
+    NS_AADL2,
+    XMI_ID_KEY,
+    XSI_TYPE,
+    XSI_TYPE_KEY,
+    fragment_index_problem,
+    link_class,
+    name_of,
+    split_ref_attribute,
+)
 
 __all__ = ["Reader", "directory_of"]
 
@@ -181,10 +190,18 @@ class Reader:
         found = self.href_cache.get(text)
         if found is None:
             uri, _, frag = text.partition("#")
+            self.check_fragment(frag, element, "href")
             found = (uri, frag)
             self.href_cache[text] = found
             self.note_uri(uri)
         return found
+
+    def check_fragment(self, fragment: str, element: etree._Element, attribute: str) -> None:
+        """A located error when the positions of the fragment path of ``element``'s
+        ``attribute`` are malformed (:func:`~.xmi.fragment_index_problem`)."""
+        problem = fragment_index_problem(fragment)
+        if problem is not None:
+            raise self.error(f"{attribute} #{fragment}: {problem}", element, attribute)
 
     def link_checked(self, element: etree._Element) -> None:
         """A link element whose target the instance object already names (a subcomponent's, a
@@ -192,7 +209,9 @@ class Reader:
         text = element.get("href")
         if text is None:
             raise self.error(f"<{element.tag}> has no href", element)
-        self.note_uri(text.partition("#")[0])
+        uri, _, frag = text.partition("#")
+        self.check_fragment(frag, element, "href")
+        self.note_uri(uri)
 
     def note_uri(self, uri: str) -> None:
         if uri and uri not in self.seen_uris:
@@ -238,6 +257,7 @@ class Reader:
                 self.unknown(child, owner)
         if target is None and el.get(tag) is not None:
             xsi_type, uri, frag = split_ref_attribute(el.get(tag))
+            self.check_fragment(frag, el, tag)
             target = (link_class(xsi_type, tag), uri, frag)
         return target
 

@@ -75,6 +75,7 @@ def property_name(r: Reader, href: str | None, obj: EObject, el: etree._Element)
     found = r.property_cache.get(href)
     if found is None:
         uri, _, frag = href.partition("#")
+        r.check_fragment(frag, el, "href" if el.get("href") is not None else "property")
         r.note_uri(uri)
         positional = not frag or is_positional(frag)
         found = (href if positional else qualified_name(frag, "Property"), positional)
@@ -168,6 +169,7 @@ def _number(r: Reader, el, prop, field_href, cls: type, value_slot, unit_slot, c
         if unit_attr is None:
             return obj
         _type, uri, frag = split_ref_attribute(unit_attr)
+        r.check_fragment(frag, el, "unit")
         r.note_uri(uri)
         found = (f"{uri}#{frag}", r.literal_uses.setdefault((uri, frag, "unit", prop, field_href), []))
     fast.set_value(obj, unit_slot, found[0])
@@ -264,6 +266,7 @@ def _record(r: Reader, el, prop, field_href) -> EObject:
                 r.unknown(part, "ownedFieldValue")
         if target is None and child.get("property") is not None:
             _type, uri, frag = split_ref_attribute(child.get("property"))
+            r.check_fragment(frag, child, "property")
             target = (uri, frag)
         if target is None or value_el is None:
             raise r.error("a record field needs a property and an ownedValue", child)

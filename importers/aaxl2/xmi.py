@@ -9,6 +9,8 @@ into the names the model keeps.
 
 from __future__ import annotations
 
+import re
+
 __all__ = [
     "NS_XMI",
     "NS_XSI",
@@ -36,6 +38,7 @@ __all__ = [
     "link_class",
     "name_of",
     "is_positional",
+    "fragment_index_problem",
     "split_ref_attribute",
 ]
 
@@ -180,6 +183,35 @@ def name_of(uri: str, fragment: str, kind: str | None = None) -> str:
 
 def is_positional(fragment: str) -> bool:
     return fragment.startswith("/") or fragment.startswith("@")
+
+
+_POSITION = re.compile(r"[0-9]+")
+
+
+def fragment_index_problem(fragment: str) -> str | None:
+    """Why the positions of an EMF fragment path are malformed (``@ownedPropertyType.-1``,
+    ``@x.1_0``, ``/+0``), or None when they are well formed or the fragment is not a path.
+
+    EMF reads a segment ``@feature.k`` by ``Integer.parseInt`` of what follows the last dot and
+    takes the ``k``-th item of the feature's list (``EObjectImpl.eObjectForURIFragmentSegment``),
+    and a root segment ``/k`` as the ``k``-th root (``ResourceImpl.getEObject``): a negative
+    position fails there (``IndexOutOfBoundsException``), as does a number Java cannot parse
+    (``1_0``, an empty one). A position is ASCII digits, nothing else (OSATE never writes a
+    sign, so ``+2``, which Java would read as 2, is refused too). A keyed segment
+    (``@feature[name='a.b']``) holds no position.
+    """
+    if not is_positional(fragment):
+        return None
+    for number, segment in enumerate(fragment.split("/")):
+        if segment.startswith("@"):
+            if "[" in segment:
+                continue
+            _feature, dot, position = segment.rpartition(".")
+            if dot and not _POSITION.fullmatch(position):
+                return f"position {position!r} of {segment!r} is not a list index (digits 0-9)"
+        elif segment and (number != 1 or not _POSITION.fullmatch(segment)):
+            return f"segment {segment!r} is neither @feature.index nor the index of a root"
+    return None
 
 
 def split_ref_attribute(text: str) -> tuple[str | None, str, str]:

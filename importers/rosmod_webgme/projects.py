@@ -22,7 +22,7 @@ from rosaadl.importers.rosmod_webgme.archive import load_project_json
 from rosaadl.importers.rosmod_webgme.mapping import SKIPPED_KINDS, Mapper
 from rosaadl.importers.rosmod_webgme.tree import Node, Tree
 
-__all__ = ["read_webgmex", "project_names", "map_project"]
+__all__ = ["read_webgmex", "read_webgmex_projects", "project_names", "map_project"]
 
 log = logging.getLogger(__package__)
 
@@ -76,6 +76,24 @@ def read_webgmex(
             [ImportFormatError("the project tree is nested too deeply", Location(file=filename))]
         ) from None
     ctx.raise_if_errors()
+    return projects
+
+
+def read_webgmex_projects(
+    path: str | os.PathLike[str],
+    *,
+    project: str | None = None,
+    warnings: list[Diagnostic] | None = None,
+) -> list[EObject]:
+    """:func:`read_webgmex` for what must convert or check a project: an archive that holds no
+    ROSMOD project (only a META, or an empty root) is an :class:`~rosaadl.errors.ImportFormatError`
+    located at the archive, never an empty result that writes nothing."""
+    projects = read_webgmex(path, project=project, warnings=warnings)
+    if not projects:
+        raise ImportFormatError(
+            "the archive holds no ROSMOD project (no node of META type Project); nothing to read",
+            file=os.fspath(path),
+        )
     return projects
 
 

@@ -2,7 +2,8 @@
 
 Errors: unknown classifiers (extends, implementation types, features, subcomponents, feature
 group inverses, renames, classifier values, ``in binding``), unknown properties, property types
-and constants, extends cycles, units declared twice. Warnings: property sets that are not loaded
+and constants, extends cycles, property constants whose values name each other in a cycle
+(:func:`~.constants.constant_cycles`), units declared twice. Warnings: property sets that are not loaded
 ("values stay untyped", once per unit and set), packages named in ``with`` clauses that are not
 loaded, and packages whose classifiers are named without a ``with`` clause (once per unit).
 
@@ -23,6 +24,7 @@ from pyecore.ecore import EObject
 from rosaadl.errors import Diagnostic, NameResolutionError
 from rosaadl.model import is_a
 
+from .constants import VALUE_OPERANDS, constant_cycles
 from .index import visible_packages
 from .names import enum_name, lower, split_name, squeeze, strip_all
 from .visibility import package_alias
@@ -75,6 +77,13 @@ class _ReferenceCheck:
                         self.warning(
                             unit, f"package or property set {with_name} named in a with clause is not loaded"
                         )
+        for cycle in constant_cycles(resolver):
+            links = "; ".join(
+                f"{resolver.qualified_name(link.constant)} => "
+                + ", ".join(resolver.qualified_name(named) for named in link.names)
+                for link in cycle
+            )
+            self.error(cycle[0].constant, f"property constants defined in a cycle: {links}")
         for duplicate in resolver.index.duplicates:
             self.error(duplicate, f"{duplicate.name} is declared more than once")
         for unit in units.values():
@@ -224,7 +233,7 @@ class _ReferenceCheck:
                 and resolver.property(expr.name, holder) is None
             ):
                 self.property_name(holder, expr.name, "property constant")
-            operands = _OPERANDS.get(kind)
+            operands = VALUE_OPERANDS.get(kind)
             if operands is not None:
                 stack.extend(operands(expr))
 
@@ -278,12 +287,3 @@ class _ReferenceCheck:
                         self.type_name(field, field.type)
                     else:
                         stack.append(field.ownedType)
-
-
-#: the values directly inside a range, list, record or operation value, by value class
-_OPERANDS = {
-    "RangeValue": lambda expr: [e for e in (expr.minimum, expr.maximum, expr.delta) if e is not None],
-    "ListValue": lambda expr: list(expr.ownedItems),
-    "RecordValue": lambda expr: [f.value for f in expr.ownedFields if f.value is not None],
-    "OperationValue": lambda expr: list(expr.ownedOperands),
-}

@@ -56,11 +56,12 @@ def convert_project_files(
     file is made before the first one is written, each atomically; the paths written.
     """
     from rosaadl.exporters.aadl_text import write_units
-    from rosaadl.importers import rosmod_text, rosmod_webgme
+    from rosaadl.importers import rosmod_text
+    from rosaadl.importers.rosmod_webgme.projects import read_webgmex_projects
 
     path = Path(source)
     if path.suffix.lower() == ".webgmex":
-        projects = rosmod_webgme.read_webgmex(path, project=project, warnings=warnings)
+        projects = read_webgmex_projects(path, project=project, warnings=warnings)
     else:
         projects = [rosmod_text.read_project(path, warnings=warnings)]
     several = len(projects) > 1
