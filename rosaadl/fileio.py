@@ -74,8 +74,10 @@ def _discard(path: Path | None) -> None:
             os.unlink(path)
 
 
-def _write_temporary(target: Path, write: Callable[[IO], None], mode: str) -> Path:
-    """Write a complete, synced temporary file beside ``target``; its path (``target`` untouched)."""
+@contextmanager
+def _temporary_beside(target: Path, mode: str) -> Iterator[tuple[IO, Path]]:
+    """A new temporary file beside ``target``, open in ``mode``, and its path; synced when the
+    block ends, removed if it raises (an :class:`OSError` becomes an :class:`ExportError`)."""
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = _create_temporary(target.parent)
@@ -85,7 +87,7 @@ def _write_temporary(target: Path, write: Callable[[IO], None], mode: str) -> Pa
         encoding = None if "b" in mode else "utf-8"
         newline = None if "b" in mode else ""
         with os.fdopen(fd, mode, encoding=encoding, newline=newline) as handle:
-            write(handle)
+            yield handle, tmp
             handle.flush()
             os.fsync(handle.fileno())
     except BaseException as exc:
@@ -93,7 +95,6 @@ def _write_temporary(target: Path, write: Callable[[IO], None], mode: str) -> Pa
         if isinstance(exc, OSError):
             raise cannot_write(target, exc) from None
         raise
-    return tmp
 
 
 @contextmanager
@@ -108,21 +109,13 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     target = expect_path(path, "the file to write", error=ExportError)
     _refuse_folder(target)
     sweep_temporaries([target.parent], targets=[target])
+    written: Path | None = None
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = _create_temporary(target.parent)
-    except OSError as exc:
-        raise cannot_write(target, exc) from None
-    try:
-        encoding = None if "b" in mode else "utf-8"
-        newline = None if "b" in mode else ""
-        with os.fdopen(fd, mode, encoding=encoding, newline=newline) as handle:
+        with _temporary_beside(target, mode) as (handle, written):
             yield handle
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, target)
+        os.replace(written, target)
     except BaseException as exc:
-        _discard(tmp)
+        _discard(written)
         if isinstance(exc, OSError):
             raise cannot_write(target, exc) from None
         raise
@@ -150,8 +143,9 @@ def write_files(
 
     def prepare(index: int) -> None:
         target, data = jobs[index]
-        mode = "w" if isinstance(data, str) else "wb"
-        temporaries[index] = _write_temporary(target, lambda handle: handle.write(data), mode)
+        with _temporary_beside(target, "w" if isinstance(data, str) else "wb") as (handle, tmp):
+            temporaries[index] = tmp
+            handle.write(data)
 
     try:
         if workers > 1 and len(jobs) > 1:
