@@ -602,14 +602,11 @@ def write_project(
     """Write ``project`` as a ROSMOD v0.3 project folder ``out_dir``; the paths written.
 
     Every text is made first; an :class:`ExportError` (a name that cannot be written) leaves no
-    output at all. Files are written atomically and never outside ``out_dir``.
+    output at all. Files are written all-or-nothing and never outside ``out_dir``.
     """
     files = render_project(project, warnings=warnings)
     targets = [(fileio.safe_join(out_dir, *relative.split("/")), text) for relative, text in files.items()]
-    written = []
-    for target, text in targets:
-        fileio.atomic_write_text(target, text)
-        written.append(target)
+    written = fileio.write_files(targets)
     log.info("wrote %d ROSMOD file(s) to %s", len(written), out_dir)
     return written
 

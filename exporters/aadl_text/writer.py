@@ -68,7 +68,7 @@ def write_model(model: EObject | Iterable[EObject], out_dir: str | os.PathLike[s
     """Write every unit of an ``AadlModel`` (or the given units) as ``<unit>.aadl`` into ``out_dir``.
 
     All texts are made before the first file is written, so an error leaves no output at all;
-    each file is written atomically. A unit name that is not an AADL name (``../../etc``) is
+    the files are written all-or-nothing. A unit name that is not an AADL name (``../../etc``) is
     refused with :class:`ExportError`, and no path can land outside ``out_dir``.
     """
     if is_a(model, "AadlPackage", "PropertySet"):
@@ -84,9 +84,6 @@ def write_model(model: EObject | Iterable[EObject], out_dir: str | os.PathLike[s
         raise ExportError(f"expected an AadlModel, got {model.eClass.name}")
     texts = write_units(units)
     targets = [(fileio.safe_join(out_dir, name), text) for name, text in texts.items()]
-    written = []
-    for target, text in targets:
-        fileio.atomic_write_text(target, text)
-        written.append(target)
+    written = fileio.write_files(targets)
     log.info("wrote %d AADL file(s) to %s", len(written), out_dir)
     return written

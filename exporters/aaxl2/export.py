@@ -17,7 +17,7 @@ from pyecore.ecore import EObject
 
 from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, ExportError, Location
-from rosaadl.fileio import atomic_write_bytes, atomic_write_text, safe_join
+from rosaadl.fileio import safe_join, write_files
 from rosaadl.model import is_a
 
 from .document import write_document
@@ -160,16 +160,15 @@ def write_aaxl2(
 ) -> Path:
     """Write ``instances/<Name>_Instance.aaxl2`` and its ``.aadl`` sidecars into ``out_dir``.
 
-    Everything is made in memory first, so an error leaves no output; each file is written
-    atomically and no path lands outside ``out_dir``. Returns the path of the ``.aaxl2`` file;
-    warnings are logged and appended to ``warnings`` when given.
+    Everything is made in memory first, so an error leaves no output; the files are written
+    all-or-nothing (:func:`rosaadl.fileio.write_files`) and no path lands outside ``out_dir``.
+    Returns the path of the ``.aaxl2`` file; warnings are logged and appended to ``warnings``
+    when given.
     """
     result = export_aaxl2(subject, root=root)
     targets = [(safe_join(out_dir, name), text) for name, text in result.sidecars.items()]
     instance_path = safe_join(out_dir, *result.file_name.split("/"))
-    for target, text in targets:
-        atomic_write_text(target, text)
-    atomic_write_bytes(instance_path, result.data)
+    write_files([*targets, (instance_path, result.data)])
     if warnings is not None:
         warnings.extend(result.warnings)
     return instance_path

@@ -10,8 +10,11 @@ writes it:
   otherwise kept, commented out, in the file's orphan section;
 * a file with no marker that is not what the generator would write is never overwritten unless
   ``force``; a file that would not change is not rewritten;
-* every path is joined under the output folder with :func:`rosaadl.fileio.safe_join`, every
-  write is atomic, and everything is computed before the first write;
+* every path is joined under the output folder with :func:`rosaadl.fileio.safe_join`,
+  everything is computed before the first write, and the files are written all-or-nothing
+  (:func:`rosaadl.fileio.write_files`: all to temporaries, then renamed; an interrupt or an
+  error leaves the workspace as it was); stale temporaries of an earlier, killed run are swept
+  from every folder of the plan;
 * the output folder keeps a trace of the generation (``.rosaadl-rclpy.trace``: which model
   element each block and file came from), read back at the next generation.
 """
@@ -23,7 +26,6 @@ import logging
 import os
 import re
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
@@ -31,7 +33,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import model as _model
 from rosaadl.arguments import checked
-from rosaadl.errors import Diagnostic, GenerationError, Location, RosaadlError, UsageError
+from rosaadl.errors import Diagnostic, ExportError, GenerationError, Location, RosaadlError, UsageError
 from rosaadl.exporters.rclpy import naming, preservation
 from rosaadl.exporters.rclpy.deployment import Deployment, HostPlan, NodeInstance, find_feature
 from rosaadl.exporters.rclpy.instances import caching, enum_name, prop
@@ -41,7 +43,7 @@ from rosaadl.exporters.rclpy.nodes import NodeBuilder, NodeClass
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.render import render_template
 from rosaadl.exporters.rclpy.topics import Topology
-from rosaadl.fileio import atomic_write_bytes, atomic_write_text, existing, safe_join
+from rosaadl.fileio import existing, safe_join, sweep_temporaries, write_files
 from rosaadl.properties import own_property
 
 __all__ = [
@@ -880,16 +882,19 @@ def generate_workspace(
         return result
     try:
         out.mkdir(parents=True, exist_ok=True)
-        # Each write is atomic and synced to disk; syncing many files concurrently is much faster.
-        with ThreadPoolExecutor(max_workers=_WRITERS) as pool:
-            jobs = [(target, pool.submit(atomic_write_text, target, text)) for target, text in targets]
-            failures = [(target, job.exception()) for target, job in jobs if job.exception() is not None]
-        if failures:
-            target, error = failures[0]
-            raise GenerationError(f"cannot write the file: {error}", file=str(target))
+        planned_folders = {safe_join(out, *PurePosixPath(p.path).parts).parent for p in plan.files}
+        sweep_temporaries(sorted(planned_folders | {out}))
+        writes: list[tuple[Path, str | bytes]] = list(targets)
         manifest = _manifest(plan, orphan_keys)
         if not manifest_target.is_file() or manifest_target.read_bytes() != manifest:
-            atomic_write_bytes(manifest_target, manifest)
+            writes.append((manifest_target, manifest))
+        # Each file is synced to disk; syncing many files concurrently is much faster.
+        try:
+            write_files(writes, workers=_WRITERS)
+        except GenerationError:
+            raise
+        except ExportError as exc:
+            raise GenerationError(f"cannot write the file: {exc.message}", exc.location) from None
     except OSError as exc:
         raise GenerationError(f"cannot write: {exc.strerror or exc}", file=str(exc.filename or out)) from None
     log.info(

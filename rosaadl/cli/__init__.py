@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+import contextlib
 import logging
+import signal
 import sys
+import threading
 import traceback
+from collections.abc import Iterator
 
 import click
 
@@ -21,7 +25,42 @@ from rosaadl.cli.common import (
 )
 from rosaadl.errors import RosaadlError, UsageError
 
-__all__ = ["cli", "main"]
+__all__ = ["cli", "main", "Interrupted"]
+
+_STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class Interrupted(BaseException):
+    """SIGINT or SIGTERM arrived: unwinds like ``KeyboardInterrupt``, so every write in
+    progress removes its temporaries, and the command ends with ``128 + signal number``."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def _interrupt(signum: int, _frame: object) -> None:
+    # a second signal while the first unwinds must not cut the clean-up short
+    for other in _STOP_SIGNALS:
+        signal.signal(other, signal.SIG_IGN)
+    raise Interrupted(signum)
+
+
+@contextlib.contextmanager
+def _stop_signals_interrupt() -> Iterator[None]:
+    """SIGINT and SIGTERM raise :class:`Interrupted` for the block (main thread only), then
+    the handlers in place before are put back."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {signum: signal.getsignal(signum) for signum in _STOP_SIGNALS}
+    for signum in _STOP_SIGNALS:
+        signal.signal(signum, _interrupt)
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler if handler is not None else signal.SIG_DFL)
 
 
 @click.group(cls=VerbGroup, context_settings={"help_option_names": ["-h", "--help"]})
@@ -64,7 +103,11 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point: runs the group and maps outcomes to exit codes (never an unasked traceback)."""
     debug = "--debug" in (argv if argv is not None else sys.argv[1:])
     try:
-        result = cli.main(args=argv, prog_name="rosaadl", standalone_mode=False)
+        with _stop_signals_interrupt():
+            result = cli.main(args=argv, prog_name="rosaadl", standalone_mode=False)
+    except Interrupted as exc:
+        click.echo(f"interrupted ({exc}): no output file was left half-written", err=True)
+        return 128 + exc.signum
     except click.exceptions.Exit as exc:
         return exc.exit_code
     except click.exceptions.Abort:

@@ -80,8 +80,7 @@ def convert_project_files(
             outputs.append(
                 (target, _model.dumps_json(result.trace) if as_json else _model.dumps_xmi(result.trace))
             )
-    for target, data in outputs:
-        fileio.atomic_write_bytes(target, data)
+    fileio.write_files(outputs)
     log.info("wrote %d file(s) for %d project(s)", len(outputs), len(projects))
     return [target for target, _ in outputs]
 
@@ -204,6 +203,4 @@ def convert_aadl_files(
         project = _rosmod_project(sources, forward, roots, warnings)
         for relative, text in render_project(project, warnings=warnings).items():
             outputs.append((fileio.safe_join(target, *relative.split("/")), text))
-    for target, text in outputs:
-        fileio.atomic_write_text(target, text)
-    return [target for target, _ in outputs]
+    return fileio.write_files(outputs)

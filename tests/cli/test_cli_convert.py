@@ -202,3 +202,16 @@ def test_webgmex_archive_to_aadl_and_back_per_project(corpus: Path, tmp_path: Pa
     originals = {p.name.replace(" ", "_"): p for p in read_webgmex(seed)}  # the folders' names
     for folder in folders:
         assert_same_components_and_deployments(originals[folder], read_project(back / folder))
+
+
+@pytest.mark.corpus
+def test_a_convert_that_fails_on_the_sixth_file_writes_none(corpus: Path, tmp_path: Path, capsys) -> None:
+    """The sixth output's name is taken by a folder: exit 1 naming it, and none of the other
+    files is written (all are written to temporaries first, then renamed)."""
+    out = tmp_path / "aadl"
+    (out / "Component_2_Benchmark_deployment.aadl").mkdir(parents=True)
+    code, _, err = run(
+        ["convert", str(corpus / "rosmod/textual-v0.3/three-components"), "-o", str(out)], capsys
+    )
+    assert code == 1 and "Component_2_Benchmark_deployment.aadl" in err and "folder" in err, err
+    assert [p.name for p in out.iterdir()] == ["Component_2_Benchmark_deployment.aadl"]
