@@ -66,10 +66,9 @@ def read_document(state: ReadState, data: bytes) -> EObject:
     if state.version == 3:
         v3.collect_ids(state, sections)
     known = SECTIONS_V3 if state.version == 3 else SECTIONS_V2
-    for name in order:
+    for name, repeated in sections.items():
         if name not in known:
-            for section in sections[name]:
-                _keep_section(state, section)
+            _keep_sections(state, name, repeated)
     readers = v3.SECTION_READERS if state.version == 3 else v2.SECTION_READERS
     for name in known:
         for section in sections.get(name, []):
@@ -97,16 +96,20 @@ def read_document(state: ReadState, data: bytes) -> EObject:
     return aadl_model
 
 
-def _keep_section(state: ReadState, section: etree._Element) -> None:
-    name = local(section)
-    items = children(section)
+def _keep_sections(state: ReadState, name: str, sections: list[etree._Element]) -> None:
+    """Keep verbatim every section called ``name`` (not modelled), with one warning for all.
+
+    Each section is visited once (the reading stays linear in the file's size), and a name
+    repeated ``n`` times gives one warning located at its first section, counting them.
+    """
+    first = sections[0]
     if state.strict:
-        state.fail(section, f"section <{name}> is not modelled by rosaadl")
-    state.warn(section, f"section <{name}> is not modelled by rosaadl; kept as it is")
-    if not items:
-        return
-    for item in items:
-        state.kept.append((name, canonical_xml(item)))
+        state.fail(first, f"section <{name}> is not modelled by rosaadl")
+    times = f" ({len(sections)} times)" if len(sections) > 1 else ""
+    state.warn(first, f"section <{name}> is not modelled by rosaadl; kept as it is{times}")
+    for section in sections:
+        for item in children(section):
+            state.kept.append((name, canonical_xml(item)))
 
 
 @checked
