@@ -8,13 +8,18 @@ within ten times its size.
 
 from __future__ import annotations
 
+import subprocess
+import sys
 import time
+import zipfile
+from pathlib import Path
 
 from test_cheddar import _document
 
 from rosaadl.errors import Diagnostic
 from rosaadl.importers.cheddar import loads_cheddar
 from rosaadl.importers.cheddar.vocabulary import CP
+from rosaadl.importers.json_limits import json_value_bound
 from rosaadl.properties import own_property
 
 
@@ -31,3 +36,56 @@ def test_cheddar_repeated_unknown_section_is_read_once_with_one_counted_warning(
     kept = own_property(root, CP + "Unmodelled_Elements")
     assert len(kept) == 1000
     assert kept[0] == {"Section": "event_analyzers", "Xml": "<event_analyzer><name>e</name></event_analyzer>"}
+
+
+def _peak_rss_of_child(code: str, *args: str) -> tuple[int, str]:
+    """Run ``code`` in a fresh interpreter; its peak resident memory (bytes, VmHWM) and output."""
+    script = code + (
+        "\nimport sys\n"
+        "for line in open('/proc/self/status'):\n"
+        "    if line.startswith('VmHWM:'):\n"
+        "        print('PEAK', int(line.split()[1]) * 1024)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script, *args], capture_output=True, text=True, timeout=120, check=False
+    )
+    assert done.returncode == 0, done.stderr
+    peak = next(int(line.split()[1]) for line in done.stdout.splitlines() if line.startswith("PEAK "))
+    return peak, done.stdout
+
+
+def _amplifying_webgmex(path: Path, values: int) -> int:
+    """A ``.webgmex`` whose project.json is ``values`` empty arrays; the JSON's size in bytes."""
+    text = b'{"rootHash": "#1", "objects": [' + b"[]," * values + b"{}]}"
+    with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("project.json", text)
+    return len(text)
+
+
+_READ_WEBGMEX = """
+import sys
+from rosaadl.errors import ImportFormatError
+from rosaadl.importers.rosmod_webgme.archive import load_project_json
+try:
+    load_project_json(sys.argv[1])
+    print('READ')
+except ImportFormatError as exc:
+    print('REFUSED', exc)
+"""
+
+
+def test_webgmex_of_millions_of_small_values_is_refused_in_bounded_memory(tmp_path: Path) -> None:
+    archive = tmp_path / "amplified.webgmex"
+    size = _amplifying_webgmex(archive, 8_000_000)
+    assert archive.stat().st_size < size // 100  # a small file that expands a lot
+    peak, output = _peak_rss_of_child(_READ_WEBGMEX, str(archive))
+    assert "REFUSED" in output and "project.json" in output and "JSON values" in output, output
+    baseline, _ = _peak_rss_of_child("import rosaadl.importers.rosmod_webgme.archive")
+    assert peak - baseline < 5 * size, (peak, baseline, size)
+
+
+def test_json_value_bound_counts_values_and_leaves_out_commas_in_strings() -> None:
+    assert json_value_bound(b'{"a": [1, 2, {"b": null}], "c": "x"}') >= 6
+    text = b'["' + b",[{" * 100 + b'", 1]'
+    assert json_value_bound(text, cap=10) == 3
+    assert json_value_bound(b'["a\\", [", 2]', cap=1) == 3
