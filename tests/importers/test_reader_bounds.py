@@ -89,3 +89,53 @@ def test_json_value_bound_counts_values_and_leaves_out_commas_in_strings() -> No
     text = b'["' + b",[{" * 100 + b'", 1]'
     assert json_value_bound(text, cap=10) == 3
     assert json_value_bound(b'["a\\", [", 2]', cap=1) == 3
+
+
+_LONG_TOKENS = r"""
+import gc, sys
+from rosaadl.errors import RosaadlError
+from rosaadl.importers.aadl_syntax import parse
+from rosaadl.importers.aadl_text import read_string
+
+def resident(field):
+    for line in open('/proc/self/status'):
+        if line.startswith(field):
+            return int(line.split()[1]) * 1024
+
+def package(value):
+    head = 'package P\npublic\n  data D\n  properties\n    Source_Text => ('
+    return head + value + ');\n  end D;\nend P;\n'
+
+n = 1_000_000
+cases = {
+    'plain string': package('"' + 'a' * n + '"'),
+    'escaped quotes': package('"' + '\\"' * (n // 2) + '"'),
+    'doubled quotes': package('"' + '""' * (n // 2) + '"'),
+    'unterminated string': package('"' + 'a\\"' * (n // 3)),
+    'long integer': package('1' + '_1' * (n // 2)),
+    'comment lines': package('"a"' + '\n--' * (n // 3)),
+    'white space': 'package P public' + ' \t' * (n // 2) + 'end P;',
+}
+read_string(package('"warm up"'), 'warm.aadl')
+for name, text in cases.items():
+    gc.collect()
+    open('/proc/self/clear_refs', 'w').write('5')
+    before = resident('VmRSS:')
+    try:
+        read_string(text, 'long.aadl') if 'string' in name else parse(text, 'long.aadl')
+    except RosaadlError as exc:
+        assert exc.location.line, exc
+    print('CASE', name, resident('VmHWM:') - before, len(text))
+"""
+
+
+def test_aadl_long_tokens_are_lexed_in_memory_linear_in_their_length() -> None:
+    """A 1 MB string, integer or gap costs a few times its size, not 300 bytes per character."""
+    done = subprocess.run(
+        [sys.executable, "-c", _LONG_TOKENS], capture_output=True, text=True, timeout=120, check=False
+    )
+    assert done.returncode == 0, done.stderr
+    cases = [line.split()[1:] for line in done.stdout.splitlines() if line.startswith("CASE ")]
+    assert len(cases) == 7, done.stdout
+    for *name, grown, size in cases:
+        assert int(grown) < 10 * int(size), (" ".join(name), grown, size)
