@@ -90,24 +90,20 @@ def read_document(state: ReadState, data: bytes) -> EObject:
             ),
         )
     aadl_model.instances.append(root)
-    for (kind, tag), (element, count) in state.unknown.items():
-        times = f" ({count} times)" if count > 1 else ""
-        state.warn(element, f"<{kind}> field <{tag}> is not modelled by rosaadl; kept as it is{times}")
     return aadl_model
 
 
 def _keep_sections(state: ReadState, name: str, sections: list[etree._Element]) -> None:
     """Keep verbatim every section called ``name`` (not modelled), with one warning for all.
 
-    Each section is visited once (the reading stays linear in the file's size), and a name
-    repeated ``n`` times gives one warning located at its first section, counting them.
+    Each section is visited once (the reading stays linear in the file's size); a name
+    repeated ``n`` times gives one warning at its first section, counting them (see
+    :meth:`ReadState.report_warnings`).
     """
-    first = sections[0]
     if state.strict:
-        state.fail(first, f"section <{name}> is not modelled by rosaadl")
-    times = f" ({len(sections)} times)" if len(sections) > 1 else ""
-    state.warn(first, f"section <{name}> is not modelled by rosaadl; kept as it is{times}")
+        state.fail(sections[0], f"section <{name}> is not modelled by rosaadl")
     for section in sections:
+        state.warn(section, f"section <{name}> is not modelled by rosaadl; kept as it is")
         for item in children(section):
             state.kept.append((name, canonical_xml(item)))
 
@@ -139,6 +135,8 @@ def loads_cheddar(
         raise
     except RecursionError:
         raise ImportFormatError("the document is nested too deeply", file=filename) from None
+    finally:
+        state.report_warnings()
 
 
 @checked

@@ -14,7 +14,7 @@ import time
 import zipfile
 from pathlib import Path
 
-from test_cheddar import _document
+from test_cheddar import _document, _task
 
 from rosaadl.errors import Diagnostic
 from rosaadl.importers.cheddar import loads_cheddar
@@ -36,6 +36,19 @@ def test_cheddar_repeated_unknown_section_is_read_once_with_one_counted_warning(
     kept = own_property(root, CP + "Unmodelled_Elements")
     assert len(kept) == 1000
     assert kept[0] == {"Section": "event_analyzers", "Xml": "<event_analyzer><name>e</name></event_analyzer>"}
+
+
+def test_cheddar_warning_repeated_by_many_tasks_is_reported_once_with_its_count() -> None:
+    tasks = "\n".join(
+        _task(name=f"t{i}", ident=f"id{i}", extra="<policy>SCHED_LOTTERY</policy><colour>red</colour>")
+        for i in range(300)
+    )
+    diagnostics: list[Diagnostic] = []
+    loads_cheddar(_document(tasks).encode(), "many.xmlv3", diagnostics=diagnostics)
+    policy, colour = diagnostics
+    assert "SCHED_LOTTERY" in policy.message and policy.message.endswith("(300 times)")
+    assert "<colour>" in colour.message and colour.message.endswith("(300 times)")
+    assert policy.location.path == "/cheddar/tasks/periodic_task[1]/policy"
 
 
 def _peak_rss_of_child(code: str, *args: str) -> tuple[int, str]:
