@@ -149,8 +149,8 @@ class _Scanner:
             else:
                 others.append(term)
         others.sort(key=lambda t: (-t.priority, -t.pattern.max_width, -len(t.pattern.value), t.name))
-        # nothing follows the skipped text in this expression, so it never backtracks
-        self.skip = re.compile("(?:" + "|".join(t.pattern.to_regexp() for t in skipped) + ")+")
+        # a possessive repeat: the gap is matched keeping no backtracking state per part of it
+        self.skip = re.compile("(?:" + "|".join(t.pattern.to_regexp() for t in skipped) + ")++")
         self.token = re.compile("|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in others))
         # "{**" that did not match ANNEX_TEXT (no closing "**}") would be read as "{" "*" "*"
         self.left_brace = next((t.name for t in others if t.pattern.value == "{"), None)

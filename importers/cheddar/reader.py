@@ -66,10 +66,9 @@ def read_document(state: ReadState, data: bytes) -> EObject:
     if state.version == 3:
         v3.collect_ids(state, sections)
     known = SECTIONS_V3 if state.version == 3 else SECTIONS_V2
-    for name in order:
+    for name, repeated in sections.items():
         if name not in known:
-            for section in sections[name]:
-                _keep_section(state, section)
+            _keep_sections(state, name, repeated)
     readers = v3.SECTION_READERS if state.version == 3 else v2.SECTION_READERS
     for name in known:
         for section in sections.get(name, []):
@@ -91,22 +90,22 @@ def read_document(state: ReadState, data: bytes) -> EObject:
             ),
         )
     aadl_model.instances.append(root)
-    for (kind, tag), (element, count) in state.unknown.items():
-        times = f" ({count} times)" if count > 1 else ""
-        state.warn(element, f"<{kind}> field <{tag}> is not modelled by rosaadl; kept as it is{times}")
     return aadl_model
 
 
-def _keep_section(state: ReadState, section: etree._Element) -> None:
-    name = local(section)
-    items = children(section)
+def _keep_sections(state: ReadState, name: str, sections: list[etree._Element]) -> None:
+    """Keep verbatim every section called ``name`` (not modelled), with one warning for all.
+
+    Each section is visited once (the reading stays linear in the file's size); a name
+    repeated ``n`` times gives one warning at its first section, counting them (see
+    :meth:`ReadState.report_warnings`).
+    """
     if state.strict:
-        state.fail(section, f"section <{name}> is not modelled by rosaadl")
-    state.warn(section, f"section <{name}> is not modelled by rosaadl; kept as it is")
-    if not items:
-        return
-    for item in items:
-        state.kept.append((name, canonical_xml(item)))
+        state.fail(sections[0], f"section <{name}> is not modelled by rosaadl")
+    for section in sections:
+        state.warn(section, f"section <{name}> is not modelled by rosaadl; kept as it is")
+        for item in children(section):
+            state.kept.append((name, canonical_xml(item)))
 
 
 @checked
@@ -136,6 +135,8 @@ def loads_cheddar(
         raise
     except RecursionError:
         raise ImportFormatError("the document is nested too deeply", file=filename) from None
+    finally:
+        state.report_warnings()
 
 
 @checked

@@ -83,7 +83,7 @@ class ReadState:
         self.messages: dict[str, Entity] = {}
         self.networks: dict[str, Entity] = {}
         self.by_id: dict[str, Entity] = {}
-        self.unknown: dict[tuple[str, str], list] = {}
+        self.warnings: dict[str, list] = {}  # message -> [first element, count]
         self.kept: list[tuple[str, str]] = []
         self.names: dict[int, set[str]] = {}
         self.features: dict[tuple, EObject] = {}
@@ -101,9 +101,19 @@ class ReadState:
         raise ImportFormatError(message, self.where(element))
 
     def warn(self, element: etree._Element, message: str) -> None:
-        diagnostic = Diagnostic("warning", message, self.where(element))
-        self.diagnostics.append(diagnostic)
-        log.warning("%s", diagnostic)
+        """Note a warning; the same message again only counts (see :meth:`report_warnings`)."""
+        record = self.warnings.setdefault(message, [element, 0])
+        record[1] += 1
+
+    def report_warnings(self) -> None:
+        """Report each warning once, at its first element, with the times it was met when
+        more than one ("(1000 times)"): a file repeating a problem gets one line for it."""
+        for message, (element, count) in self.warnings.items():
+            times = f" ({count} times)" if count > 1 else ""
+            diagnostic = Diagnostic("warning", message + times, self.where(element))
+            self.diagnostics.append(diagnostic)
+            log.warning("%s", diagnostic)
+        self.warnings.clear()
 
     def lenient(self, element: etree._Element, message: str) -> None:
         """A problem Cheddar's own reader tolerates: a warning, or an error when strict."""
@@ -256,8 +266,7 @@ class ReadState:
                 continue
             if self.strict:
                 self.fail(child, f"<{kind}> field <{tag}> is not modelled by rosaadl")
-            record = self.unknown.setdefault((kind, tag), [child, 0])
-            record[1] += 1
+            self.warn(child, f"<{kind}> field <{tag}> is not modelled by rosaadl; kept as it is")
             kept = self.kept_fields.setdefault(id(owner), (owner, []))[1]
             kept.append(
                 record_value([("Section", str_value(kind)), ("Xml", str_value(canonical_xml(child)))])

@@ -1,7 +1,8 @@
 """The ``.webgmex`` archive: a zip file whose ``project.json`` holds one WebGME project tree.
 
 :func:`load_project_json` opens the archive with the checks a file from elsewhere deserves (no
-member outside the archive, bounded size and count, no encryption) and returns the parsed
+member outside the archive, bounded size and count, no encryption, a bounded number of JSON
+values so that the parsed tree stays bounded too) and returns the parsed
 ``project.json`` (``{rootHash, objects: [...]}``). The archive's other members
 (``<hash>.content``/``.metadata``: experiment logs) are not read, and nothing is extracted.
 """
@@ -17,6 +18,7 @@ from typing import Any
 
 from rosaadl.arguments import expect_path
 from rosaadl.errors import ImportFormatError, Location
+from rosaadl.importers.json_limits import MAX_JSON_VALUES, json_value_bound
 
 __all__ = ["MAX_TOTAL_BYTES", "MAX_MEMBERS", "load_project_json", "fail"]
 
@@ -53,6 +55,8 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     Refused with a located :class:`ImportFormatError`: a file that is not a zip archive, a
     truncated or corrupt archive, a member named with an absolute path or ``..``, more than
     :data:`MAX_MEMBERS` members or more than :data:`MAX_TOTAL_BYTES` uncompressed bytes,
+    a ``project.json`` of more than :data:`~rosaadl.importers.json_limits.MAX_JSON_VALUES`
+    values (a small text of many small values would amplify to gigabytes once parsed),
     encrypted members, a missing or malformed ``project.json``.
     """
     expect_path(path)
@@ -98,8 +102,16 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
         raise fail(f"corrupt or truncated zip archive: {exc}", filename) from None
     except OSError as exc:
         raise fail(f"cannot read the archive: {exc.strerror or exc}", filename) from None
+    values = json_value_bound(data)
+    if values > MAX_JSON_VALUES:
+        raise fail(
+            f"project.json holds about {values} JSON values (more than {MAX_JSON_VALUES}); refused "
+            "before parsing, to bound memory",
+            filename,
+            path="project.json",
+        )
     try:
-        doc = json.loads(bytes(data).decode("utf-8-sig"))
+        doc = json.loads(data.decode("utf-8-sig"))
     except UnicodeDecodeError as exc:
         raise fail(
             f"project.json is not UTF-8 text (byte {exc.start})", filename, path="project.json"
