@@ -736,6 +736,16 @@ class _Extractor:
             if period <= 0:
                 self.diag("error", f"Period is {period} {self.time_unit}; it must be positive", obj)
                 return None
+            resolution = exact_time(self.units.factor("ps", self.time_unit)) if self.units.knows("ps") else 0
+            if period < resolution:
+                # AADL's finest Time_Units literal is ps: no clock, simulation or analysis
+                # step resolves less, and a shorter period multiplies the jobs without bound
+                self.diag(
+                    "error",
+                    f"Period is {period} {self.time_unit}, below the time resolution 1 ps",
+                    obj,
+                )
+                return None
         elif dispatch.recurrent:
             self.diag("error", f"{dispatch.value} thread has no Period", obj)
             return None
