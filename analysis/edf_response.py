@@ -40,6 +40,10 @@ in Cheddar's sources, read for facts):
 
 Ours follows the papers.
 
+Each task's busy periods and candidate arrivals take at most
+:data:`~rosaadl.analysis.work_bounds.RTA_STEP_LIMIT` steps (:func:`bounded_edf_response_times`
+says which tasks were cut, and the largest response time found before the cut).
+
 Every time is scaled once to integers (the least common multiple of the denominators), so the
 results are exact ``int`` or ``Fraction``; the non-preemptive blocking C_j − 1 is one unit of
 that base, as in Cheddar's discrete time.

@@ -21,10 +21,18 @@ Per scheduling domain (a processor, or one core of a partitioned multi-core proc
 
 Every function is pure; :func:`analyze_schedulability` gathers them into a
 :class:`SchedulabilityResult` with rows and located diagnostics.
+
+Work bound: a task's response-time iteration takes at most
+:data:`~rosaadl.analysis.work_bounds.RTA_STEP_LIMIT` fixed-point steps (a busy period at
+utilisation exactly 1 can last the whole hyperperiod). Past it, a response time already above
+the deadline is reported as a lower bound (``>=X``, a miss); otherwise the task is undecided,
+a warning names it, and the utilisation test gives the verdict.
 """
 
 from __future__ import annotations
 
+import heapq
+import itertools
 import logging
 import math
 from collections.abc import Iterable, Sequence
@@ -132,7 +140,8 @@ def utilization_bound(scheduler: Scheduler, tasks: Sequence[Task]) -> tuple[floa
 
 
 def utilization_test(scheduler: Scheduler, preemptive: bool, tasks: Sequence[Task]) -> bool | None:
-    """Cheddar's utilisation-factor feasibility test (None where Cheddar has none)."""
+    """Cheddar's utilisation-factor feasibility test (None where Cheddar has none, or where
+    Jeffay's non-preemptive EDF condition passes its work bound of RTA_STEP_LIMIT × n points)."""
     periodic = _recurrent(tasks)
     if not periodic:
         return True
@@ -186,8 +195,16 @@ def _non_preemptive_edf_test(tasks: list[Task]) -> bool | None:
     periods = [int(t.period * base) for t in ordered]
     capacities = [int(t.capacity * base) for t in ordered]
     first = periods[0]
+    budget = RTA_STEP_LIMIT * len(ordered)  # the work bound: past it the test has no verdict
     for i in range(1, len(ordered)):
-        for length in range(first + 1, periods[i]):
+        # The demand only grows at L = k T_j + 1: checking those L (and the first) is exact.
+        steps = heapq.merge(
+            *(range((first // periods[j] + 1) * periods[j] + 1, periods[i], periods[j]) for j in range(i))
+        )
+        for length in itertools.chain((first + 1,), steps):
+            budget -= 1
+            if budget < 0:
+                return None
             demand = capacities[i] + sum((length - 1) // periods[j] * capacities[j] for j in range(i))
             if demand > length:
                 return False

@@ -4,6 +4,7 @@ simulation cut by its job cap never passes."""
 
 from __future__ import annotations
 
+import random
 import signal
 import time
 from fractions import Fraction
@@ -13,7 +14,13 @@ import pytest
 from rosaadl import model
 from rosaadl.analysis.edf_response import bounded_edf_response_times
 from rosaadl.analysis.report import run_analyses
-from rosaadl.analysis.schedulability import analyze_schedulability, bounded_response_times, response_times
+from rosaadl.analysis.schedulability import (
+    analyze_schedulability,
+    bounded_response_times,
+    response_times,
+    utilization,
+    utilization_test,
+)
 from rosaadl.analysis.simulation import simulate, simulation_text
 from rosaadl.analysis.tasks import Processor, Scheduler, Task, TaskSet, taskset_from_instance
 from rosaadl.analysis.work_bounds import RTA_STEP_LIMIT
@@ -180,3 +187,34 @@ def test_a_cut_simulation_alone_is_inconclusive_and_fails_the_run():
     # the feasibility tests decide (utilisation above 1: not schedulable), so the run is decided
     both = run_analyses(root, only="sched,sim")
     assert not both.inconclusive and not both.ok and "FAILED" in both.text()
+
+
+def _jeffay_by_every_length(tasks: list[Task]) -> bool:
+    ordered = sorted(tasks, key=lambda t: t.period)
+    if utilization(ordered) > 1:
+        return False
+    for i in range(1, len(ordered)):
+        for length in range(ordered[0].period + 1, ordered[i].period):
+            demand = ordered[i].capacity + sum(
+                (length - 1) // ordered[j].period * ordered[j].capacity for j in range(i)
+            )
+            if demand > length:
+                return False
+    return True
+
+
+def test_jeffay_condition_checks_the_demand_steps_only():
+    rng = random.Random(21)
+    for _ in range(300):
+        tasks = [Task(f"t{k}", rng.randint(2, 60), 1, processor="cpu") for k in range(rng.randint(2, 4))]
+        tasks = [Task(t.name, t.period, rng.randint(1, max(1, t.period // 3))) for t in tasks]
+        expected = _jeffay_by_every_length(tasks)
+        assert utilization_test(Scheduler.EARLIEST_DEADLINE_FIRST, False, tasks) is expected
+
+
+def test_jeffay_condition_on_far_apart_periods_ends():
+    # every length in (2, 10⁹) was tried: 10⁹ steps
+    tasks = [Task("fast", 2, 1), Task("slow", 10**9, 1)]
+    assert utilization_test(Scheduler.EARLIEST_DEADLINE_FIRST, False, tasks) is None
+    tasks = [Task("fast", 2, 1), Task("slow", 2 * 10**5, 1)]
+    assert utilization_test(Scheduler.EARLIEST_DEADLINE_FIRST, False, tasks) is True
