@@ -5,11 +5,11 @@ simulation cut by its job cap never passes."""
 from __future__ import annotations
 
 import random
-import signal
 import time
 from fractions import Fraction
 
 import pytest
+from time_limit import within_seconds
 
 from rosaadl import model
 from rosaadl.analysis.edf_response import bounded_edf_response_times
@@ -30,18 +30,7 @@ LIMIT_S = 10
 COPRIME = (1009, 1013, 1019, 1021)
 
 
-@pytest.fixture(autouse=True)
-def _ten_seconds():
-    """A hang fails the test instead of hanging the suite."""
-
-    def expired(signum, frame):
-        raise TimeoutError(f"analysis ran past {LIMIT_S} s")
-
-    previous = signal.signal(signal.SIGALRM, expired)
-    signal.alarm(LIMIT_S)
-    yield
-    signal.alarm(0)
-    signal.signal(signal.SIGALRM, previous)
+_ten_seconds = pytest.fixture(autouse=True, name="ten_seconds")(within_seconds(LIMIT_S))
 
 
 def _full_load(scheduler: Scheduler, preemptive: bool = True) -> TaskSet:

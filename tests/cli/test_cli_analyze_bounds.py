@@ -4,10 +4,10 @@ cut horizon is reported inconclusive with exit 1, never "0 deadline misses ... O
 from __future__ import annotations
 
 import json
-import signal
 from pathlib import Path
 
 import pytest
+from time_limit import within_seconds
 
 from rosaadl.cli import main
 
@@ -50,16 +50,7 @@ end overload;
 """
 
 
-@pytest.fixture(autouse=True)
-def _ten_seconds():
-    def expired(signum, frame):
-        raise TimeoutError(f"analyze ran past {LIMIT_S} s")
-
-    previous = signal.signal(signal.SIGALRM, expired)
-    signal.alarm(LIMIT_S)
-    yield
-    signal.alarm(0)
-    signal.signal(signal.SIGALRM, previous)
+_ten_seconds = pytest.fixture(autouse=True, name="ten_seconds")(within_seconds(LIMIT_S))
 
 
 @pytest.fixture()
