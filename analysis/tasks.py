@@ -92,6 +92,12 @@ def time_base(values: Iterable[Time]) -> int:
     return base
 
 
+def _written(quantity: Any) -> str:
+    """A property value as written (``0.001 ps``), for messages."""
+    value, unit = getattr(quantity, "value", quantity), getattr(quantity, "unit", None)
+    return f"{value} {unit}" if unit else str(value)
+
+
 class Scheduler(str, enum.Enum):
     """Scheduling protocols, with Cheddar's names as values."""
 
@@ -742,7 +748,7 @@ class _Extractor:
                 # step resolves less, and a shorter period multiplies the jobs without bound
                 self.diag(
                     "error",
-                    f"Period is {period} {self.time_unit}, below the time resolution 1 ps",
+                    f"Period is {_written(values['Period'])}, below the time resolution 1 ps",
                     obj,
                 )
                 return None
