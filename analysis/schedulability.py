@@ -813,7 +813,7 @@ def _analyze_domain(
                 task.utilization,
                 r,
                 met,
-                task.name not in cut,
+                task.name not in cut or r is None,
             )
         )
     u = utilization(periodic)

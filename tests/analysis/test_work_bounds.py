@@ -78,7 +78,8 @@ def test_edf_full_load_is_cut_and_the_utilisation_test_decides():
     result = analyze_schedulability(_full_load(Scheduler.EARLIEST_DEADLINE_FIRST))
     domain = result.domain("cpu")
     assert domain.rta_schedulable is None and domain.schedulable is True
-    assert all(r.wcrt is None and r.met is None for r in domain.tasks)
+    assert all(r.wcrt is None and r.met is None and r.wcrt_exact for r in domain.tasks)
+    assert "wcrt_at_least" not in domain.tasks[0].as_dict()
     assert sum("cut after" in d.message for d in result.diagnostics) == len(COPRIME)
 
 
