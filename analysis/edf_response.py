@@ -40,6 +40,10 @@ in Cheddar's sources, read for facts):
 
 Ours follows the papers.
 
+Each task's busy periods and candidate arrivals take at most
+:data:`~rosaadl.analysis.work_bounds.RTA_STEP_LIMIT` steps (:func:`bounded_edf_response_times`
+says which tasks were cut, and the largest response time found before the cut).
+
 Every time is scaled once to integers (the least common multiple of the denominators), so the
 results are exact ``int`` or ``Fraction``; the non-preemptive blocking C_j − 1 is one unit of
 that base, as in Cheddar's discrete time.
@@ -56,6 +60,7 @@ from operator import itemgetter
 from typing import NamedTuple
 
 from rosaadl.analysis.tasks import Protocol, Task, TaskSet, Time, exact_time, time_base
+from rosaadl.analysis.work_bounds import RTA_STEP_LIMIT, StepBudget, WorkCut
 from rosaadl.errors import Location, ModelError
 
 __all__ = [
@@ -63,6 +68,7 @@ __all__ = [
     "release_offsets",
     "deadline_busy_period",
     "edf_response_times",
+    "bounded_edf_response_times",
     "edf_blocking_times",
 ]
 
@@ -123,7 +129,7 @@ def _utilization(s: _Scaled) -> Fraction:
     return sum((Fraction(c, t) for c, t in zip(s.cost, s.period, strict=True)), Fraction(0))
 
 
-def _busy_period(s: _Scaled, blocking: int) -> int | None:
+def _busy_period(s: _Scaled, blocking: int, budget: StepBudget | None = None) -> int | None:
     """Least L > 0 with L = B + Σ_j ⌈(L + J_j) / T_j⌉ C_j (None: no such L)."""
     u = _utilization(s)
     if u > 1 or (u == 1 and (blocking > 0 or any(s.jitter))):
@@ -131,6 +137,8 @@ def _busy_period(s: _Scaled, blocking: int) -> int | None:
     terms = list(zip(s.period, s.cost, s.jitter, strict=True))
     length = blocking + sum(s.cost)
     while True:
+        if budget is not None:
+            budget.spend()
         new = blocking + sum(_ceil_div(length + j, t) * c for t, c, j in terms)
         if new == length:
             return length
@@ -169,7 +177,13 @@ def _np_blocking(s: _Scaled, i: int, a: int) -> int:
 
 
 def _deadline_busy_period(
-    s: _Scaled, i: int, a: int, counts: list[int], preemptive: bool, start: int = 0
+    s: _Scaled,
+    i: int,
+    a: int,
+    counts: list[int],
+    preemptive: bool,
+    start: int = 0,
+    budget: StepBudget | None = None,
 ) -> int:
     """L_i(a), iterated from ``start`` (any value below it); ``counts`` from :func:`_job_counts`."""
     terms = [
@@ -181,6 +195,8 @@ def _deadline_busy_period(
         fixed = s.blocking[i] + counts[i] * s.cost[i]
         length = max(start, fixed)
         while True:
+            if budget is not None:
+                budget.spend()
             new = fixed
             for t, c, j, cap in terms:
                 jobs = -(-(length + j) // t)  # ⌈(L + J_j) / T_j⌉
@@ -191,6 +207,8 @@ def _deadline_busy_period(
     fixed = _np_blocking(s, i, a) + (counts[i] - 1) * s.cost[i]
     length = max(start, 0)
     while True:
+        if budget is not None:
+            budget.spend()
         new = fixed
         for t, c, j, cap in terms:
             jobs = 1 + (length + j) // t  # 1 + ⌊(L + J_j) / T_j⌋
@@ -282,22 +300,25 @@ def release_offsets(task: Task, tasks: Sequence[Task], limit: Time) -> list[Time
 # =============================================================================== response times
 
 
-def _response_time(s: _Scaled, i: int, preemptive: bool) -> int:
+def _response_time(s: _Scaled, i: int, preemptive: bool, budget: StepBudget) -> int:
     if preemptive:
         blocking = s.blocking[i]
     else:
         blocking = max([s.blocking[i], 0, *(s.cost[j] - 1 for j in range(len(s.tasks)) if j != i)])
-    busy = _busy_period(s, blocking)
+    budget.found(s.cost[i] + s.jitter[i])
+    busy = _busy_period(s, blocking, budget)
     # One hyperperiod of a is enough: L_i(a + H) <= L_i(a) + H when U <= 1.
     limit = math.lcm(*s.period) - s.jitter[i] - 1
     if busy is not None:
         limit = min(limit, busy)
     c_i = s.cost[i]
     worst = c_i + s.jitter[i]
+    budget.found(worst)
     counts, steps = _demand_steps(s, i, limit)
     demand = blocking + sum(k * c for k, c in zip(counts, s.cost, strict=True))
     previous = 0
     for a, counted in steps:
+        budget.spend()
         for j in counted:
             counts[j] += 1
             demand += s.cost[j]
@@ -306,10 +327,11 @@ def _response_time(s: _Scaled, i: int, preemptive: bool) -> int:
         if demand - a <= worst:
             continue  # r_i(a) <= demand - a
         if preemptive:
-            previous = _deadline_busy_period(s, i, a, counts, True, previous)  # does not fall with a
+            previous = _deadline_busy_period(s, i, a, counts, True, previous, budget)  # not falling
             worst = max(worst, previous - a)
         else:
-            worst = max(worst, _deadline_busy_period(s, i, a, counts, False) + c_i - a)
+            worst = max(worst, _deadline_busy_period(s, i, a, counts, False, 0, budget) + c_i - a)
+        budget.found(worst)
     return worst
 
 
@@ -338,10 +360,34 @@ def edf_response_times(
     (Σ C/T = 1 with blocking or jitter). Offsets are ignored: the bound holds for every release
     pattern with at least T_j between two releases of task j.
     """
+    values, cut = bounded_edf_response_times(tasks, preemptive=preemptive, blocking=blocking)
+    return {name: None if name in cut else value for name, value in values.items()}
+
+
+def bounded_edf_response_times(
+    tasks: Sequence[Task],
+    *,
+    preemptive: bool = True,
+    blocking: Mapping[str, Time] | None = None,
+    step_limit: int = RTA_STEP_LIMIT,
+) -> tuple[dict[str, Time | None], dict[str, Time]]:
+    """(response times, cut): :func:`edf_response_times`, where a task whose busy periods and
+    candidate arrivals need more than ``step_limit`` steps (fixed-point steps plus candidates
+    tried, :mod:`~rosaadl.analysis.work_bounds`) is cut: ``cut`` maps it to the largest response
+    time found before the cut (a lower bound of its worst case), and its value is that bound."""
     s = _scaled(tasks, blocking)
+    cut: dict[str, Time] = {}
     if _utilization(s) > 1:
-        return {task.name: None for task in s.tasks}
-    return {task.name: _unscaled(_response_time(s, i, preemptive), s.base) for i, task in enumerate(s.tasks)}
+        return {task.name: None for task in s.tasks}, cut
+    values: dict[str, Time | None] = {}
+    for i, task in enumerate(s.tasks):
+        try:
+            r = _response_time(s, i, preemptive, StepBudget(step_limit))
+        except WorkCut as stop:
+            r = stop.at_least
+            cut[task.name] = _unscaled(r, s.base)
+        values[task.name] = _unscaled(r, s.base)
+    return values, cut
 
 
 # =============================================================================== blocking

@@ -427,7 +427,7 @@ def _wcrt_map(root: Any, schedulability: Any) -> dict[str, Fraction]:
     result = {}
     for domain in schedulability.domains:
         for row in domain.tasks:
-            if row.wcrt is not None:
+            if row.wcrt is not None and row.wcrt_exact:  # a lower bound bounds nothing
                 result[row.path] = Fraction(row.wcrt) * factor
     return result
 

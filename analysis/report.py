@@ -33,7 +33,9 @@ registered) on an instance and gathers them in an :class:`AnalysisReport`:
   style of its resource budget analyses.
 
 ``ok`` is false when any analysis reports an error: an overload, a budget exceeded, a task set
-found not schedulable, a deadline missed in simulation, a latency over its bound, no deployment.
+found not schedulable, a deadline missed in simulation, a latency over its bound, no deployment;
+and when the run is ``inconclusive``: a simulation horizon cut by the job cap before any miss,
+with no feasibility test deciding every domain (a cut horizon is never a pass).
 """
 
 from __future__ import annotations
@@ -134,8 +136,18 @@ class AnalysisReport:
         return tuple(d for d in self.diagnostics if d.severity == "warning")
 
     @property
+    def inconclusive(self) -> bool:
+        """An analysis could not decide (``inconclusive``: a simulation whose horizon the job cap
+        cut before any miss) and no other analysis of the run decided (``decided``: the
+        feasibility tests gave every domain a verdict)."""
+        results = [r for _k, r in self.results()]
+        return any(getattr(r, "inconclusive", False) for r in results) and not any(
+            getattr(r, "decided", False) for r in results
+        )
+
+    @property
     def ok(self) -> bool:
-        return not self.errors and all(r.ok for _k, r in self.results())
+        return not self.errors and all(r.ok for _k, r in self.results()) and not self.inconclusive
 
     # ------------------------------------------------------------------ JSON
 
@@ -152,6 +164,7 @@ class AnalysisReport:
 
         return {
             "ok": self.ok,
+            **({"inconclusive": True} if self.inconclusive else {}),
             "analyses": {item.json_key: result.as_dict() for item, result in self.outcomes},
             "errors": [entry(d) for d in self.errors],
             "warnings": [entry(d) for d in self.warnings],
@@ -172,7 +185,10 @@ class AnalysisReport:
                 lines.append(f"{title} ({len(group)})")
                 lines += [f"  {d}" for d in group]
                 lines.append("")
-        lines.append("OK" if self.ok else "FAILED")
+        if self.inconclusive and not self.errors:
+            lines.append("INCONCLUSIVE (a simulation horizon was cut and no other analysis decided)")
+        else:
+            lines.append("OK" if self.ok else "FAILED")
         return "\n".join(lines) + "\n"
 
     # ------------------------------------------------------------------ CSV

@@ -21,10 +21,18 @@ Per scheduling domain (a processor, or one core of a partitioned multi-core proc
 
 Every function is pure; :func:`analyze_schedulability` gathers them into a
 :class:`SchedulabilityResult` with rows and located diagnostics.
+
+Work bound: a task's response-time iteration takes at most
+:data:`~rosaadl.analysis.work_bounds.RTA_STEP_LIMIT` fixed-point steps (a busy period at
+utilisation exactly 1 can last the whole hyperperiod). Past it, a response time already above
+the deadline is reported as a lower bound (``>=X``, a miss); otherwise the task is undecided,
+a warning names it, and the utilisation test gives the verdict.
 """
 
 from __future__ import annotations
 
+import heapq
+import itertools
 import logging
 import math
 from collections.abc import Iterable, Sequence
@@ -32,7 +40,7 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
-from rosaadl.analysis.edf_response import edf_blocking_times, edf_response_times
+from rosaadl.analysis.edf_response import bounded_edf_response_times, edf_blocking_times
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, short_path, table
 from rosaadl.analysis.tasks import (
@@ -46,6 +54,7 @@ from rosaadl.analysis.tasks import (
     taskset_from_instance,
     time_base,
 )
+from rosaadl.analysis.work_bounds import RTA_STEP_LIMIT, StepBudget, WorkCut
 from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, Location, ModelError
 
@@ -66,6 +75,7 @@ __all__ = [
     "deadline_monotonic_priorities",
     "assign_priorities",
     "response_times",
+    "bounded_response_times",
     "blocking_times",
     "TaskRow",
     "DomainResult",
@@ -130,7 +140,8 @@ def utilization_bound(scheduler: Scheduler, tasks: Sequence[Task]) -> tuple[floa
 
 
 def utilization_test(scheduler: Scheduler, preemptive: bool, tasks: Sequence[Task]) -> bool | None:
-    """Cheddar's utilisation-factor feasibility test (None where Cheddar has none)."""
+    """Cheddar's utilisation-factor feasibility test (None where Cheddar has none, or where
+    Jeffay's non-preemptive EDF condition passes its work bound of RTA_STEP_LIMIT × n points)."""
     periodic = _recurrent(tasks)
     if not periodic:
         return True
@@ -184,8 +195,16 @@ def _non_preemptive_edf_test(tasks: list[Task]) -> bool | None:
     periods = [int(t.period * base) for t in ordered]
     capacities = [int(t.capacity * base) for t in ordered]
     first = periods[0]
+    budget = RTA_STEP_LIMIT * len(ordered)  # the work bound: past it the test has no verdict
     for i in range(1, len(ordered)):
-        for length in range(first + 1, periods[i]):
+        # The demand only grows at L = k T_j + 1: checking those L (and the first) is exact.
+        steps = heapq.merge(
+            *(range((first // periods[j] + 1) * periods[j] + 1, periods[i], periods[j]) for j in range(i))
+        )
+        for length in itertools.chain((first + 1,), steps):
+            budget -= 1
+            if budget < 0:
+                return None
             demand = capacities[i] + sum((length - 1) // periods[j] * capacities[j] for j in range(i))
             if demand > length:
                 return False
@@ -318,10 +337,14 @@ def _ceil_div(a: int, b: int) -> int:
     return -(-a // b)
 
 
-def response_times(tasks: Sequence[Task], *, preemptive: bool = True) -> dict[str, Time | None]:
+def response_times(
+    tasks: Sequence[Task], *, preemptive: bool = True, step_limit: int = RTA_STEP_LIMIT
+) -> dict[str, Time | None]:
     """Worst-case response time of every task with a period, under fixed priorities (larger
     number = higher priority); None when it is unbounded (the higher-or-equal priority load
-    saturates the processor).
+    saturates the processor) or when its analysis passed the work bound (``step_limit``
+    fixed-point steps per task, :mod:`~rosaadl.analysis.work_bounds`; see
+    :func:`bounded_response_times` for what was found before the cut).
 
     Preemptive (Cheddar's equation, Tindell's busy window with arbitrary deadlines)::
 
@@ -337,9 +360,20 @@ def response_times(tasks: Sequence[Task], *, preemptive: bool = True) -> dict[st
     where L_i is the level-i busy period. Tasks of *equal* priority count as interference
     (Cheddar counts only strictly higher ones; with distinct priorities both agree).
     """
+    values, cut = bounded_response_times(tasks, preemptive=preemptive, step_limit=step_limit)
+    return {name: None if name in cut else value for name, value in values.items()}
+
+
+def bounded_response_times(
+    tasks: Sequence[Task], *, preemptive: bool = True, step_limit: int = RTA_STEP_LIMIT
+) -> tuple[dict[str, Time | None], dict[str, Time]]:
+    """(response times, cut): :func:`response_times`, where a task whose busy window needs more
+    than ``step_limit`` fixed-point steps is cut: ``cut`` maps it to the largest response time
+    found before the cut (a lower bound of its worst case), and its value is that bound."""
     periodic = _recurrent(tasks)
+    cut: dict[str, Time] = {}
     if not periodic:
-        return {}
+        return {}, cut
     base = time_base(v for t in periodic for v in (t.period, t.capacity, t.jitter, t.blocking))
     order = sorted(range(len(periodic)), key=lambda i: -periodic[i].priority)
     prio = [periodic[i].priority for i in order]
@@ -385,16 +419,22 @@ def response_times(tasks: Sequence[Task], *, preemptive: bool = True) -> dict[st
             hp_j = jitter[:pos] + jitter[pos + 1 : end]
         else:
             hp_t, hp_c, hp_j = period[:pos], cost[:pos], jitter[:pos]
-        if preemptive:
-            start = c_i + b_i + sum(hp_c)
-            if hint is not None and not tied:
-                start = max(start, hint + c_i + b_i)
-            r, w0 = _preemptive_rta(t_i, c_i, j_i, b_i, hp_t, hp_c, hp_j, start)
-            hint = w0 if (b_i == 0 and not tied) else None
-        else:
-            r = _non_preemptive_rta(t_i, c_i, j_i, b_i, hp_t, hp_c, hp_j)
+        budget = StepBudget(step_limit)
+        budget.found(c_i + j_i)
+        try:
+            if preemptive:
+                start = c_i + b_i + sum(hp_c)
+                if hint is not None and not tied:
+                    start = max(start, hint + c_i + b_i)
+                r, w0 = _preemptive_rta(t_i, c_i, j_i, b_i, hp_t, hp_c, hp_j, start, budget)
+                hint = w0 if (b_i == 0 and not tied) else None
+            else:
+                r = _non_preemptive_rta(t_i, c_i, j_i, b_i, hp_t, hp_c, hp_j, budget)
+        except WorkCut as stop:
+            r, hint = stop.at_least, None
+            cut[name] = exact_time(Fraction(r, base))
         results[name] = exact_time(Fraction(r, base))
-    return {t.name: results[t.name] for t in periodic}
+    return {t.name: results[t.name] for t in periodic}, cut
 
 
 def _level_utilization(approx: float, cs: list[int], ts: list[int], count: int) -> Fraction | float:
@@ -406,7 +446,15 @@ def _level_utilization(approx: float, cs: list[int], ts: list[int], count: int) 
 
 
 def _preemptive_rta(
-    t_i: int, c_i: int, j_i: int, b_i: int, ts: list[int], cs: list[int], js: list[int], start: int
+    t_i: int,
+    c_i: int,
+    j_i: int,
+    b_i: int,
+    ts: list[int],
+    cs: list[int],
+    js: list[int],
+    start: int,
+    budget: StepBudget,
 ) -> tuple[int, int]:
     """(worst response time, window of the first job) by Cheddar's busy-window iteration."""
     jittery = any(js)
@@ -419,6 +467,7 @@ def _preemptive_rta(
     while True:
         base_term = (q + 1) * c_i + b_i
         while True:
+            budget.spend()
             if jittery:
                 new = base_term + sum([-((-(w + j)) // t) * c for t, c, j in triples])
             else:
@@ -429,6 +478,7 @@ def _preemptive_rta(
         if q == 0:
             first = w
         worst = max(worst, w + j_i - q * t_i)
+        budget.found(worst)
         if w <= (q + 1) * t_i - j_i:
             return worst, first
         q += 1
@@ -436,12 +486,13 @@ def _preemptive_rta(
 
 
 def _non_preemptive_rta(
-    t_i: int, c_i: int, j_i: int, b_i: int, ts: list[int], cs: list[int], js: list[int]
+    t_i: int, c_i: int, j_i: int, b_i: int, ts: list[int], cs: list[int], js: list[int], budget: StepBudget
 ) -> int:
     # Level-i busy period (blocking included, conservative against Cheddar's).
     all_t, all_c, all_j = ts + [t_i], cs + [c_i], js + [j_i]
     length = max(c_i + b_i, 1)
     while True:
+        budget.spend()
         new = b_i + sum(-((-(length + j)) // t) * c for t, c, j in zip(all_t, all_c, all_j, strict=True))
         if new == length:
             break
@@ -452,11 +503,13 @@ def _non_preemptive_rta(
     for q in range(last_q + 1):
         w = max(w, b_i + q * c_i)
         while True:
+            budget.spend()
             new = b_i + q * c_i + sum(((w + j) // t + 1) * c for t, c, j in zip(ts, cs, js, strict=True))
             if new == w:
                 break
             w = new
         worst = max(worst, w + c_i + j_i - q * t_i)
+        budget.found(worst)
     return worst
 
 
@@ -521,7 +574,8 @@ def blocking_times(tasks: Sequence[Task], taskset: TaskSet) -> dict[str, Time | 
 @dataclass(frozen=True)
 class TaskRow:
     """One task of a domain: parameters (priorities after RM/DM assignment), utilisation and
-    worst-case response time (None: unbounded or not analysed)."""
+    worst-case response time (None: unbounded, not analysed or not decided within the work
+    bound; a lower bound when ``wcrt_exact`` is False)."""
 
     name: str
     path: str
@@ -535,8 +589,10 @@ class TaskRow:
     utilization: Fraction
     wcrt: Time | None
     met: bool | None
+    wcrt_exact: bool = True  #: False: ``wcrt`` is a lower bound (the analysis passed its work bound)
 
     def as_dict(self) -> dict[str, Any]:
+        extra = {} if self.wcrt_exact else {"wcrt_at_least": True}
         return {
             "path": self.path,
             "priority": self.priority,
@@ -545,6 +601,7 @@ class TaskRow:
             "deadline": _number(self.deadline),
             "wcrt": _number(self.wcrt),
             "met": self.met,
+            **extra,
         }
 
 
@@ -608,6 +665,11 @@ class SchedulabilityResult:
             dom.schedulable is not False for dom in self.domains
         )
 
+    @property
+    def decided(self) -> bool:
+        """Every domain got a verdict (schedulable or not): a simulation cut short adds nothing."""
+        return bool(self.domains) and all(dom.schedulable is not None for dom in self.domains)
+
     def domain(self, processor: str, core: str = "") -> DomainResult:
         for dom in self.domains:
             if dom.processor == processor and dom.core == core:
@@ -656,6 +718,7 @@ def _analyze_domain(
     interval = feasibility_interval(periodic, scheduler, independent=not _uses_resources(periodic))
     unused = unused_units(periodic, interval.length) if interval else None
     wcrt: dict[str, Time | None] = {}
+    cut: dict[str, Time] = {}
     rta: bool | None = None
     unbounded_blocking: set[str] = set()
     edf = scheduler is Scheduler.EARLIEST_DEADLINE_FIRST
@@ -678,18 +741,34 @@ def _analyze_domain(
                 )
     if (scheduler.fixed_priority or edf) and periodic:
         if edf:
-            wcrt = edf_response_times(periodic, preemptive=processor.preemptive)
+            wcrt, cut = bounded_edf_response_times(periodic, preemptive=processor.preemptive)
         else:
-            wcrt = response_times(periodic, preemptive=processor.preemptive)
+            wcrt, cut = bounded_response_times(periodic, preemptive=processor.preemptive)
         for name in unbounded_blocking:
             wcrt.pop(name, None)
+            cut.pop(name, None)
+        undecided = set(unbounded_blocking)
+        for task in periodic:
+            if task.name in cut and cut[task.name] <= task.deadline:
+                # cut before the busy period ended, no miss found yet: not decided
+                undecided.add(task.name)
+                wcrt.pop(task.name, None)
+                diagnostics.append(
+                    Diagnostic(
+                        "warning",
+                        f"response-time analysis cut after {RTA_STEP_LIMIT} steps (work bound) "
+                        f"before the busy period ended: response time at least "
+                        f"{cut[task.name]} {taskset.time_unit}, not decided",
+                        Location(path=task.path),
+                    )
+                )
         rta = all(
             wcrt.get(t.name) is not None and wcrt[t.name] <= t.deadline
             for t in periodic
-            if t.name not in unbounded_blocking
+            if t.name not in undecided
         )
-        if unbounded_blocking and rta:
-            rta = None  # the others meet their deadlines; these cannot be bounded
+        if undecided and rta:
+            rta = None  # the others meet their deadlines; these cannot be bounded or decided
         if scheduler is Scheduler.FIXED_PRIORITY and len({t.priority for t in periodic}) < len(periodic):
             diagnostics.append(
                 Diagnostic(
@@ -707,6 +786,11 @@ def _analyze_domain(
             met = r is not None and r <= task.deadline
             if not met:
                 text = "unbounded" if r is None else f"{r} {taskset.time_unit}"
+                if task.name in cut:
+                    text = (
+                        f"at least {r} {taskset.time_unit} (analysis cut after "
+                        f"{RTA_STEP_LIMIT} steps, the work bound)"
+                    )
                 diagnostics.append(
                     Diagnostic(
                         "error",
@@ -729,6 +813,7 @@ def _analyze_domain(
                 task.utilization,
                 r,
                 met,
+                task.name not in cut or r is None,
             )
         )
     u = utilization(periodic)
@@ -824,12 +909,17 @@ def schedulability_text(result: SchedulabilityResult) -> list[str]:
             f"{result.time_unit}, schedulable {fmt(dom.schedulable)}"
         )
         rows = [
-            [short_path(t.path), t.priority, t.period, t.capacity, t.deadline, t.wcrt, t.met]
+            [short_path(t.path), t.priority, t.period, t.capacity, t.deadline, _wcrt_cell(t), t.met]
             for t in dom.tasks
         ]
         lines += table(["task", "priority", "period", "capacity", "deadline", "WCRT", "met"], rows)
         lines.append("")
     return lines
+
+
+def _wcrt_cell(row: TaskRow) -> Any:
+    """The WCRT as shown: ``>=X`` when it is a lower bound (the analysis passed its work bound)."""
+    return row.wcrt if row.wcrt_exact else f">={fmt(row.wcrt)}"
 
 
 def schedulability_csv(result: SchedulabilityResult, base: str) -> dict[str, str]:
@@ -849,7 +939,7 @@ def schedulability_csv(result: SchedulabilityResult, base: str) -> dict[str, str
                     t.period,
                     t.capacity,
                     t.deadline,
-                    t.wcrt,
+                    _wcrt_cell(t),
                     t.met,
                 ]
             )

@@ -43,6 +43,7 @@ from rosaadl.analysis.tasks import (
     taskset_from_instance,
     time_base,
 )
+from rosaadl.analysis.work_bounds import SIMULATION_JOB_LIMIT
 from rosaadl.arguments import checked
 from rosaadl.errors import Diagnostic, Location, ModelError
 
@@ -141,10 +142,18 @@ class SimulationResult:
     horizons: dict[tuple[str, str], Time]
     diagnostics: tuple[Diagnostic, ...]
     time_unit: str
+    cut: tuple[tuple[str, str], ...] = ()  #: domains whose horizon the job cap shortened
 
     @property
     def deadline_misses(self) -> int:
         return sum(t.deadline_misses for t in self.tasks)
+
+    @property
+    def inconclusive(self) -> bool:
+        """A domain's horizon was cut before its feasibility interval ended and no task of it
+        missed a deadline in what was simulated: a cut horizon is never a pass."""
+        missed = {(t.processor, t.core) for t in self.tasks if t.deadline_misses}
+        return any(domain not in missed for domain in self.cut)
 
     @property
     def ok(self) -> bool:
@@ -167,6 +176,7 @@ class SimulationResult:
             ],
             "deadline_misses": self.deadline_misses,
             "tasks": [t.as_dict() for t in self.tasks],
+            **({"inconclusive": True} if self.inconclusive else {}),
         }
 
 
@@ -250,7 +260,7 @@ def simulate(
     source: TaskSet | Any,
     *,
     horizon: Time | None = None,
-    max_jobs: int = 1_000_000,
+    max_jobs: int = SIMULATION_JOB_LIMIT,
     record_schedule: bool = True,
     record_jobs: bool = True,
     time_unit: str = "us",
@@ -258,7 +268,10 @@ def simulate(
     """Simulate ``source`` (a TaskSet or an instance model) on every processor and core.
 
     ``horizon`` overrides the feasibility interval of every domain. When the interval would
-    release more than ``max_jobs`` jobs, the horizon is shortened to fit and a warning says so.
+    release more than ``max_jobs`` jobs (the work bound, :data:`~rosaadl.analysis.work_bounds.
+    SIMULATION_JOB_LIMIT` by default), the horizon is shortened to fit, however short the
+    periods, and a warning says so; the result is then ``inconclusive`` unless a task of the
+    domain missed a deadline in what was simulated (a cut horizon is never a pass).
     RM and DM processors get Cheddar's priorities first.
     """
     taskset = source if isinstance(source, TaskSet) else taskset_from_instance(source, time_unit=time_unit)
@@ -272,14 +285,13 @@ def simulate(
     jobs: list[JobRecord] = []
     schedule: list[Interval] = []
     horizons: dict[tuple[str, str], Time] = {}
+    cut: list[tuple[str, str]] = []
     for group in _groups(taskset):
         group_tasks = [t for n, c in group for t in taskset.tasks_on(n, c)]
         length = horizon if horizon is not None else _default_horizon(taskset, group)
         count = job_count(group_tasks, length)
         if count > max_jobs:
-            rate = sum((Fraction(1) / t.period for t in group_tasks if t.period is not None), Fraction(0))
-            shorter = exact_time(Fraction(math.floor(max_jobs / rate))) if rate else length
-            shorter = max(shorter, 1)
+            shorter = _capped_horizon(group_tasks, length, max_jobs)
             where = ", ".join(f"{n}.{c}" if c else n for n, c in group)
             diagnostics.append(
                 Diagnostic(
@@ -290,6 +302,8 @@ def simulate(
                 )
             )
             length = shorter
+            if horizon is None:
+                cut.extend(group)
         base = time_base([*taskset.times(), length])
         engine = Engine(taskset, group, length, base, record_schedule, diagnostics)
         engine.run()
@@ -300,8 +314,19 @@ def simulate(
     ordered = tuple(stats[t.name] for t in taskset.tasks if t.name in stats)
     schedule.sort(key=lambda i: (i.start, i.processor, i.core))
     return SimulationResult(
-        ordered, tuple(jobs), tuple(schedule), horizons, tuple(diagnostics), taskset.time_unit
+        ordered, tuple(jobs), tuple(schedule), horizons, tuple(diagnostics), taskset.time_unit, tuple(cut)
     )
+
+
+def _capped_horizon(tasks: Sequence[Task], length: Time, max_jobs: int) -> Time:
+    """A horizon shorter than ``length`` in which ``tasks`` release at most ``max_jobs`` jobs: a
+    whole number of time units when one fits, else the exact fraction (never more jobs than
+    the cap, however short the periods)."""
+    rate = sum((Fraction(1) / t.period for t in tasks if t.period is not None), Fraction(0))
+    if not rate:
+        return length
+    exact = Fraction(max_jobs) / rate
+    return exact_time(Fraction(math.floor(exact))) if exact >= 1 else exact_time(exact)
 
 
 def _collect(
@@ -377,7 +402,8 @@ def _collect(
 
 def simulation_text(result: SimulationResult) -> list[str]:
     """The ``Simulation`` section of the text report."""
-    lines = [f"Simulation ({result.deadline_misses} deadline misses)", ""]
+    verdict = ", horizon cut by the job cap: inconclusive" if result.inconclusive else ""
+    lines = [f"Simulation ({result.deadline_misses} deadline misses{verdict})", ""]
     rows = [
         [
             short_path(t.path),

@@ -92,6 +92,12 @@ def time_base(values: Iterable[Time]) -> int:
     return base
 
 
+def _written(quantity: Any) -> str:
+    """A property value as written (``0.001 ps``), for messages."""
+    value, unit = getattr(quantity, "value", quantity), getattr(quantity, "unit", None)
+    return f"{value} {unit}" if unit else str(value)
+
+
 class Scheduler(str, enum.Enum):
     """Scheduling protocols, with Cheddar's names as values."""
 
@@ -735,6 +741,16 @@ class _Extractor:
                 return None
             if period <= 0:
                 self.diag("error", f"Period is {period} {self.time_unit}; it must be positive", obj)
+                return None
+            resolution = exact_time(self.units.factor("ps", self.time_unit)) if self.units.knows("ps") else 0
+            if period < resolution:
+                # AADL's finest Time_Units literal is ps: no clock, simulation or analysis
+                # step resolves less, and a shorter period multiplies the jobs without bound
+                self.diag(
+                    "error",
+                    f"Period is {_written(values['Period'])}, below the time resolution 1 ps",
+                    obj,
+                )
                 return None
         elif dispatch.recurrent:
             self.diag("error", f"{dispatch.value} thread has no Period", obj)
