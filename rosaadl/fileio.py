@@ -103,14 +103,18 @@ def safe_join(root: str | os.PathLike[str], *parts: str) -> Path:
     return candidate
 
 
-def safe_xml_parser(*, remove_blank_text: bool = False) -> etree.XMLParser:
-    """An lxml parser with entity resolution, DTD loading and network access all off."""
+def safe_xml_parser(*, remove_blank_text: bool = False, deep: bool = False) -> etree.XMLParser:
+    """An lxml parser with entity resolution, DTD loading and network access all off.
+
+    ``deep`` raises libxml2's nesting limit from 256 to 2 048 elements (its "huge" mode, which
+    also lifts its text-size limits; entities stay refused): for our own deep models.
+    """
     return etree.XMLParser(
         resolve_entities=False,
         no_network=True,
         load_dtd=False,
         dtd_validation=False,
-        huge_tree=False,
+        huge_tree=deep,
         remove_blank_text=remove_blank_text,
         remove_comments=False,
     )
@@ -128,12 +132,18 @@ def element_path(element: etree._Element) -> str:
 
 
 def parse_xml_bytes(
-    data: bytes, filename: str, *, allow_doctype: bool = False, remove_blank_text: bool = False
+    data: bytes,
+    filename: str,
+    *,
+    allow_doctype: bool = False,
+    remove_blank_text: bool = False,
+    deep: bool = False,
 ) -> etree._ElementTree:
     """Parse ``data`` with the hardened parser; errors become located :class:`ImportFormatError`.
 
     ``remove_blank_text`` drops whitespace-only text between elements (indentation), for
     readers that never look at it: the tree has half the nodes, and parses and frees faster.
+    ``deep``: see :func:`safe_xml_parser`.
 
     A DOCTYPE that declares entities is refused (entity-expansion bombs, external entities);
     a plain DOCTYPE is refused too unless ``allow_doctype`` (Cheddar v2 files carry one).
@@ -141,7 +151,9 @@ def parse_xml_bytes(
     if not data or data.isspace():
         raise ImportFormatError("the file is empty; expected an XML document", file=filename, line=1)
     try:
-        tree = etree.ElementTree(etree.fromstring(data, safe_xml_parser(remove_blank_text=remove_blank_text)))
+        tree = etree.ElementTree(
+            etree.fromstring(data, safe_xml_parser(remove_blank_text=remove_blank_text, deep=deep))
+        )
     except etree.XMLSyntaxError as exc:
         line, column = exc.position if exc.position else (None, None)
         raise ImportFormatError(

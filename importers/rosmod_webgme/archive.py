@@ -17,6 +17,7 @@ from typing import Any
 
 from rosaadl.arguments import expect_path
 from rosaadl.errors import ImportFormatError, Location
+from rosaadl.json_text import JsonLimitError, loads_bounded
 
 __all__ = ["MAX_TOTAL_BYTES", "MAX_MEMBERS", "load_project_json", "fail"]
 
@@ -99,7 +100,7 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     except OSError as exc:
         raise fail(f"cannot read the archive: {exc.strerror or exc}", filename) from None
     try:
-        doc = json.loads(bytes(data).decode("utf-8-sig"))
+        doc = loads_bounded(bytes(data).decode("utf-8-sig"))
     except UnicodeDecodeError as exc:
         raise fail(
             f"project.json is not UTF-8 text (byte {exc.start})", filename, path="project.json"
@@ -112,8 +113,8 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
             line=exc.lineno,
             column=exc.colno,
         ) from None
-    except RecursionError:
-        raise fail("project.json is nested too deeply", filename, path="project.json") from None
+    except JsonLimitError as exc:
+        raise fail(f"project.json: {exc}", filename, path="project.json") from None
     if (
         not isinstance(doc, dict)
         or not isinstance(doc.get("rootHash"), str)
