@@ -399,16 +399,23 @@ def _recursion_room(levels: int) -> Iterator[None]:
 EINT_RANGE = (-(2**31), 2**31 - 1)
 
 
+def _eint_error(obj: EObject, feature) -> str | None:
+    """Why the single-valued ``EInt`` ``feature`` of ``obj`` is outside Java's ``int``, or None."""
+    if feature.many or feature.eType.name != "EInt":
+        return None
+    value = obj.eGet(feature)
+    low, high = EINT_RANGE
+    if isinstance(value, int) and not low <= value <= high:
+        return f"{feature.name} {value} is out of range (an EInt holds {low}..{high})"
+    return None
+
+
 def _eint_errors(obj: EObject) -> Iterator[str]:
     """The messages of the ``EInt`` attributes of ``obj`` outside Java's ``int`` range."""
-    low, high = EINT_RANGE
     for feature in obj.eClass.eAllAttributes():
-        if feature.many or feature.eType.name != "EInt":
-            continue
-        value = obj.__dict__.get(feature.name)
-        value = getattr(value, "_value", value) if not isinstance(value, int) else value
-        if isinstance(value, int) and not low <= value <= high:
-            yield f"{feature.name} {value} is out of range (an EInt holds {low}..{high})"
+        message = _eint_error(obj, feature)
+        if message:
+            yield message
 
 
 class _HardenedXMIResource(XMIResource):
@@ -503,7 +510,8 @@ class _HardenedXMIResource(XMIResource):
     def _decode_eattribute_value(eobject, eattribute, value, from_tag=False):
         # runs inside _decode_eobject, whose node locates the error
         XMIResource._decode_eattribute_value(eobject, eattribute, value, from_tag)
-        for message in _eint_errors(eobject):
+        message = _eint_error(eobject, eattribute)
+        if message:
             raise ModelError(message)
 
 
