@@ -382,8 +382,10 @@ def _recursion_room(levels: int) -> Iterator[None]:
     """Run pyecore's recursive writers and readers with room for ``levels`` of containment.
 
     pyecore recurses once per level; the interpreter's limit (1 000 frames) would stop it near
-    250 levels. The limit is raised for the duration of the call only, and restored after (it is
-    process-wide: a thread running meanwhile sees the higher limit, never a lower one).
+    250 levels. The limit is raised for the duration of the call only, and restored after. It is
+    process-wide: loads and saves running at once in several threads may restore it while another
+    still needs the room (that one then fails with a located "nested too deeply" error, or
+    pyecore's RecursionError on saving); rosaadl itself loads and saves from one thread.
     """
     previous = sys.getrecursionlimit()
     wanted = previous + _FRAMES_PER_LEVEL * levels
