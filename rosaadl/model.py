@@ -362,6 +362,9 @@ def find_instance(root: EObject, path: str) -> EObject:
 #: libxml2's own limit for the XMI (2 048 nested elements) stands above it.
 MAX_MODEL_DEPTH = 2_000
 
+#: libxml2's nesting limit in its deep ("huge") mode.
+_XML_DEPTH = 2_048
+
 #: Interpreter frames pyecore's JSON and XMI writers, and the JSON reader, use per level.
 _FRAMES_PER_LEVEL = 4
 
@@ -434,7 +437,10 @@ class _HardenedXMIResource(XMIResource):
         try:
             tree = parse_xml_bytes(self._data or b"", self._filename, deep=True)
         except RosaadlError as exc:
-            raise ValidationError(exc.message, exc.location) from None
+            message = exc.message
+            if "Excessive depth" in message:  # libxml2's advice (XML_PARSE_HUGE) is already taken
+                message = f"the XML is nested too deeply (more than {_XML_DEPTH} elements)"
+            raise ValidationError(message, exc.location) from None
         # comments and processing instructions carry no model content; pyecore cannot skip them
         etree.strip_tags(tree, etree.Comment, etree.ProcessingInstruction)
         self._tree = tree
