@@ -1,15 +1,16 @@
-"""Atomic, contained file writes and hardened XML parsing shared by every reader and writer."""
+"""Atomic, contained file writes; hardened XML and bounded JSON parsing for every reader."""
 
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import stat
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import IO
+from typing import IO, Any
 
 from lxml import etree
 
@@ -26,6 +27,9 @@ __all__ = [
     "element_path",
     "cannot_write",
     "existing",
+    "JSON_INT_DIGITS",
+    "JsonLimitError",
+    "loads_bounded",
 ]
 
 
@@ -191,3 +195,38 @@ def existing(path: str | os.PathLike[str], error: type[RosaadlError] = UsageErro
     except OSError as exc:
         raise error(f"cannot use this path: {exc.strerror or exc}", file=str(target)) from None
     return True
+
+
+# --------------------------------------------------------------------------- JSON text
+# Python's json.loads raises a bare ValueError for an integer literal longer than the
+# interpreter's conversion limit (4 300 digits) and RecursionError for deep nesting; readers of
+# user files call loads_bounded and turn JsonLimitError (and json.JSONDecodeError) into their
+# own located errors.
+
+#: The longest integer literal accepted (Python's own default conversion limit).
+JSON_INT_DIGITS = 4300
+
+
+class JsonLimitError(ValueError):
+    """The JSON text is well formed but beyond what a reader accepts."""
+
+
+def _bounded_int(text: str) -> int:
+    digits = len(text.lstrip("-"))
+    if digits > JSON_INT_DIGITS:
+        raise JsonLimitError(f"an integer of {digits} digits (at most {JSON_INT_DIGITS})")
+    return int(text)
+
+
+def _refused_constant(name: str) -> float:
+    raise JsonLimitError(f"{name} is not a JSON number")
+
+
+def loads_bounded(text: str, *, allow_nan: bool = True) -> Any:
+    """``json.loads(text)`` with long integers, deep nesting and (unless ``allow_nan``) the
+    non-standard ``NaN``/``Infinity`` refused as :class:`JsonLimitError`."""
+    extra = {} if allow_nan else {"parse_constant": _refused_constant}
+    try:
+        return json.loads(text, parse_int=_bounded_int, **extra)
+    except RecursionError:
+        raise JsonLimitError("the JSON is nested too deeply") from None

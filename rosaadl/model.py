@@ -36,8 +36,7 @@ from rosaadl import metamodels
 from rosaadl.arguments import checked, describe, expect_path
 from rosaadl.bulk import FastBuilder  # re-exported: bulk construction by feature name
 from rosaadl.errors import Location, ModelError, RosaadlError, UsageError, ValidationError
-from rosaadl.fileio import atomic_write_bytes
-from rosaadl.json_text import JsonLimitError, loads_bounded
+from rosaadl.fileio import JsonLimitError, atomic_write_bytes, loads_bounded
 
 __all__ = [
     "new",

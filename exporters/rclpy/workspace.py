@@ -41,8 +41,7 @@ from rosaadl.exporters.rclpy.nodes import NodeBuilder, NodeClass
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.render import render_template
 from rosaadl.exporters.rclpy.topics import Topology
-from rosaadl.fileio import atomic_write_bytes, atomic_write_text, existing, safe_join
-from rosaadl.json_text import loads_bounded
+from rosaadl.fileio import atomic_write_bytes, atomic_write_text, existing, loads_bounded, safe_join
 from rosaadl.properties import own_property
 
 __all__ = [

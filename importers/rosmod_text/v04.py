@@ -21,6 +21,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import model
 from rosaadl.errors import NameResolutionError, ParseError
+from rosaadl.fileio import JsonLimitError, loads_bounded
 from rosaadl.importers import ros_msg
 from rosaadl.importers.rosmod_text.context import ImportContext
 from rosaadl.importers.rosmod_text.statements import (
@@ -30,7 +31,6 @@ from rosaadl.importers.rosmod_text.statements import (
     new_property,
     scheme_literal,
 )
-from rosaadl.json_text import JsonLimitError, loads_bounded
 
 __all__ = ["looks_like_json", "read_v04"]
 

@@ -17,7 +17,7 @@ from typing import Any
 
 from rosaadl.arguments import expect_path
 from rosaadl.errors import ImportFormatError, Location
-from rosaadl.json_text import JsonLimitError, loads_bounded
+from rosaadl.fileio import JsonLimitError, loads_bounded
 
 __all__ = ["MAX_TOTAL_BYTES", "MAX_MEMBERS", "load_project_json", "fail"]
 
