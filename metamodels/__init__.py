@@ -43,9 +43,12 @@ METAMODEL_NAMES = ("aadl", "rosmod", "trace")
 
 def _seconds_from_string(text: str) -> Decimal:
     try:
-        return Decimal(text)
+        value = Decimal(text)
     except InvalidOperation as exc:
         raise ModelError(f"expected a decimal number of seconds, found {text!r}") from exc
+    if not value.is_finite():
+        raise ModelError(f"expected a finite number of seconds, found {text!r}")
+    return value
 
 
 def _seconds_to_string(value: object) -> str:

@@ -1,8 +1,9 @@
-"""Atomic, contained file writes and hardened XML parsing shared by every reader and writer."""
+"""Atomic, contained file writes; hardened XML and bounded JSON parsing for every reader."""
 
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import re
 import secrets
@@ -13,7 +14,7 @@ import threading
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import IO
+from typing import IO, Any
 
 from lxml import etree
 
@@ -33,6 +34,9 @@ __all__ = [
     "element_path",
     "cannot_write",
     "existing",
+    "JSON_INT_DIGITS",
+    "JsonLimitError",
+    "loads_bounded",
 ]
 
 
@@ -329,14 +333,18 @@ def safe_join(root: str | os.PathLike[str], *parts: str) -> Path:
     return candidate
 
 
-def safe_xml_parser(*, remove_blank_text: bool = False) -> etree.XMLParser:
-    """An lxml parser with entity resolution, DTD loading and network access all off."""
+def safe_xml_parser(*, remove_blank_text: bool = False, deep: bool = False) -> etree.XMLParser:
+    """An lxml parser with entity resolution, DTD loading and network access all off.
+
+    ``deep`` raises libxml2's nesting limit from 256 to 2 048 elements (its "huge" mode, which
+    also lifts its text-size limits; entities stay refused): for our own deep models.
+    """
     return etree.XMLParser(
         resolve_entities=False,
         no_network=True,
         load_dtd=False,
         dtd_validation=False,
-        huge_tree=False,
+        huge_tree=deep,
         remove_blank_text=remove_blank_text,
         remove_comments=False,
     )
@@ -354,12 +362,18 @@ def element_path(element: etree._Element) -> str:
 
 
 def parse_xml_bytes(
-    data: bytes, filename: str, *, allow_doctype: bool = False, remove_blank_text: bool = False
+    data: bytes,
+    filename: str,
+    *,
+    allow_doctype: bool = False,
+    remove_blank_text: bool = False,
+    deep: bool = False,
 ) -> etree._ElementTree:
     """Parse ``data`` with the hardened parser; errors become located :class:`ImportFormatError`.
 
     ``remove_blank_text`` drops whitespace-only text between elements (indentation), for
     readers that never look at it: the tree has half the nodes, and parses and frees faster.
+    ``deep``: see :func:`safe_xml_parser`.
 
     A DOCTYPE that declares entities is refused (entity-expansion bombs, external entities);
     a plain DOCTYPE is refused too unless ``allow_doctype`` (Cheddar v2 files carry one).
@@ -367,7 +381,9 @@ def parse_xml_bytes(
     if not data or data.isspace():
         raise ImportFormatError("the file is empty; expected an XML document", file=filename, line=1)
     try:
-        tree = etree.ElementTree(etree.fromstring(data, safe_xml_parser(remove_blank_text=remove_blank_text)))
+        tree = etree.ElementTree(
+            etree.fromstring(data, safe_xml_parser(remove_blank_text=remove_blank_text, deep=deep))
+        )
     except etree.XMLSyntaxError as exc:
         line, column = exc.position if exc.position else (None, None)
         raise ImportFormatError(
@@ -405,3 +421,38 @@ def existing(path: str | os.PathLike[str], error: type[RosaadlError] = UsageErro
     except OSError as exc:
         raise error(f"cannot use this path: {exc.strerror or exc}", file=str(target)) from None
     return True
+
+
+# --------------------------------------------------------------------------- JSON text
+# Python's json.loads raises a bare ValueError for an integer literal longer than the
+# interpreter's conversion limit (4 300 digits) and RecursionError for deep nesting; readers of
+# user files call loads_bounded and turn JsonLimitError (and json.JSONDecodeError) into their
+# own located errors.
+
+#: The longest integer literal accepted (Python's own default conversion limit).
+JSON_INT_DIGITS = 4300
+
+
+class JsonLimitError(ValueError):
+    """The JSON text is well formed but beyond what a reader accepts."""
+
+
+def _bounded_int(text: str) -> int:
+    digits = len(text.lstrip("-"))
+    if digits > JSON_INT_DIGITS:
+        raise JsonLimitError(f"an integer of {digits} digits (at most {JSON_INT_DIGITS})")
+    return int(text)
+
+
+def _refused_constant(name: str) -> float:
+    raise JsonLimitError(f"{name} is not a JSON number")
+
+
+def loads_bounded(text: str, *, allow_nan: bool = True) -> Any:
+    """``json.loads(text)`` with long integers, deep nesting and (unless ``allow_nan``) the
+    non-standard ``NaN``/``Infinity`` refused as :class:`JsonLimitError`."""
+    extra = {} if allow_nan else {"parse_constant": _refused_constant}
+    try:
+        return json.loads(text, parse_int=_bounded_int, **extra)
+    except RecursionError:
+        raise JsonLimitError("the JSON is nested too deeply") from None

@@ -16,10 +16,12 @@ Code outside ``metamodels/`` uses these helpers instead of pyecore's reflective 
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import io
 import json
 import os
+import sys
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
@@ -34,7 +36,7 @@ from rosaadl import metamodels
 from rosaadl.arguments import checked, describe, expect_path
 from rosaadl.bulk import FastBuilder  # re-exported: bulk construction by feature name
 from rosaadl.errors import Location, ModelError, RosaadlError, UsageError, ValidationError
-from rosaadl.fileio import atomic_write_bytes
+from rosaadl.fileio import JsonLimitError, atomic_write_bytes, loads_bounded
 
 __all__ = [
     "new",
@@ -62,6 +64,9 @@ __all__ = [
     "loads_json",
     "model_equal",
     "model_differences",
+    "model_depth",
+    "MAX_MODEL_DEPTH",
+    "EINT_RANGE",
 ]
 
 
@@ -351,6 +356,72 @@ def find_instance(root: EObject, path: str) -> EObject:
 # --------------------------------------------------------------------------- persistence
 
 
+#: The deepest containment (objects within objects) rosaadl writes and reads back: room for the
+#: deepest instance hierarchy the instantiator makes (1 000 levels) and what its components hold.
+#: libxml2's own limit for the XMI (2 048 nested elements) stands above it.
+MAX_MODEL_DEPTH = 2_000
+
+#: libxml2's nesting limit in its deep ("huge") mode.
+_XML_DEPTH = 2_048
+
+#: Interpreter frames pyecore's JSON and XMI writers, and the JSON reader, use per level.
+_FRAMES_PER_LEVEL = 4
+
+
+def model_depth(root: EObject) -> int:
+    """How many objects deep the containment tree of ``root`` is (``root`` alone: 1)."""
+    deepest = 0
+    stack = [(root, 1)]
+    while stack:
+        obj, depth = stack.pop()
+        deepest = max(deepest, depth)
+        stack.extend((child, depth + 1) for child in children(obj))
+    return deepest
+
+
+@contextlib.contextmanager
+def _recursion_room(levels: int) -> Iterator[None]:
+    """Run pyecore's recursive writers and readers with room for ``levels`` of containment.
+
+    pyecore recurses once per level; the interpreter's limit (1 000 frames) would stop it near
+    250 levels. The limit is raised for the duration of the call only, and restored after. It is
+    process-wide: loads and saves running at once in several threads may restore it while another
+    still needs the room (that one then fails with a located "nested too deeply" error, or
+    pyecore's RecursionError on saving); rosaadl itself loads and saves from one thread.
+    """
+    previous = sys.getrecursionlimit()
+    wanted = previous + _FRAMES_PER_LEVEL * levels
+    if wanted > previous:
+        sys.setrecursionlimit(wanted)
+    try:
+        yield
+    finally:
+        sys.setrecursionlimit(previous)
+
+
+#: EMF's ``EInt`` is a Java ``int``: a value outside this range is refused on reading.
+EINT_RANGE = (-(2**31), 2**31 - 1)
+
+
+def _eint_error(obj: EObject, feature) -> str | None:
+    """Why the single-valued ``EInt`` ``feature`` of ``obj`` is outside Java's ``int``, or None."""
+    if feature.many or feature.eType.name != "EInt":
+        return None
+    value = obj.eGet(feature)
+    low, high = EINT_RANGE
+    if isinstance(value, int) and not low <= value <= high:
+        return f"{feature.name} {value} is out of range (an EInt holds {low}..{high})"
+    return None
+
+
+def _eint_errors(obj: EObject) -> Iterator[str]:
+    """The messages of the ``EInt`` attributes of ``obj`` outside Java's ``int`` range."""
+    for feature in obj.eClass.eAllAttributes():
+        message = _eint_error(obj, feature)
+        if message:
+            yield message
+
+
 class _HardenedXMIResource(XMIResource):
     """pyecore's XMI reader on a parser with entities, DTDs and network off, with located errors."""
 
@@ -363,9 +434,14 @@ class _HardenedXMIResource(XMIResource):
         from rosaadl.fileio import parse_xml_bytes
 
         try:
-            tree = parse_xml_bytes(self._data or b"", self._filename)
+            tree = parse_xml_bytes(self._data or b"", self._filename, deep=True)
         except RosaadlError as exc:
-            raise ValidationError(exc.message, exc.location) from None
+            message = exc.message
+            if "Excessive depth" in message:  # libxml2's advice (XML_PARSE_HUGE) is already taken
+                message = f"the XML is nested too deeply (more than {_XML_DEPTH} elements)"
+            raise ValidationError(message, exc.location) from None
+        # comments and processing instructions carry no model content; pyecore cannot skip them
+        etree.strip_tags(tree, etree.Comment, etree.ProcessingInstruction)
         self._tree = tree
         self.options = options or {}
         self.cache_enabled = True
@@ -405,14 +481,45 @@ class _HardenedXMIResource(XMIResource):
             ) from None
 
     def _decode_eobject(self, current_node, parent_eobj):
-        # the attributes written as child elements are decoded here, outside _decode_node
-        return self._located(current_node, super()._decode_eobject, current_node, parent_eobj)
+        """pyecore's decoding of an element and what it holds, in the same (document) order, with
+        a stack instead of recursion: the depth of a model is bounded by the parser alone."""
+        stack = [(current_node, parent_eobj)]
+        while stack:
+            node, parent_obj = stack.pop()
+            eobject = self._located(node, self._decode_one, node, parent_obj)
+            if eobject is not None:
+                stack.extend((child, eobject) for child in reversed(node))
+
+    def _decode_one(self, node, parent_eobj):
+        """One element (pyecore's ``_decode_eobject`` without its recursion): the object made for
+        it, attached to its container, or None when its children are not objects of their own.
+        The attributes written as child elements are decoded here, outside ``_decode_node``."""
+        feat_container, eobject, eatts, erefs, from_tag = self._decode_node(parent_eobj, node)
+        for eattribute, value in eatts:
+            self._decode_eattribute_value(eobject, eattribute, value, from_tag)
+        if erefs:
+            self._later.append((eobject, erefs))
+        if not feat_container:
+            return None
+        if feat_container.many:
+            parent_eobj.__getattribute__(feat_container._name).append(eobject)
+        else:
+            parent_eobj.__setattr__(feat_container._name, eobject)
+        return eobject
 
     def _decode_node(self, parent_eobj, node):
         return self._located(node, super()._decode_node, parent_eobj, node)
 
     def _decode_attribute(self, owner, key, value, node):
         return self._located(node, super()._decode_attribute, owner, key, value, node)
+
+    @staticmethod
+    def _decode_eattribute_value(eobject, eattribute, value, from_tag=False):
+        # runs inside _decode_eobject, whose node locates the error
+        XMIResource._decode_eattribute_value(eobject, eattribute, value, from_tag)
+        message = _eint_error(eobject, eattribute)
+        if message:
+            raise ModelError(message)
 
 
 class _MemoryURI(URI):
@@ -456,6 +563,13 @@ def _canonical_feature_order(root: EObject) -> None:
             isset[feature] = None
 
 
+def _writable_depth(root: EObject) -> int:
+    depth = model_depth(root)
+    if depth > MAX_MODEL_DEPTH:
+        raise ModelError(f"the model is {depth} objects deep; rosaadl writes at most {MAX_MODEL_DEPTH}")
+    return depth
+
+
 def dumps_xmi(root: EObject) -> bytes:
     """Serialise a model (its root object) as XMI bytes, deterministically."""
     _canonical_feature_order(root)
@@ -466,7 +580,8 @@ def dumps_xmi(root: EObject) -> bytes:
     previous = root.eResource
     resource.append(root)
     try:
-        resource.save()
+        with _recursion_room(_writable_depth(root)):
+            resource.save()
     finally:
         resource.remove(root)
         if previous is not None:
@@ -479,7 +594,8 @@ def loads_xmi(data: bytes, filename: str = "<model>") -> EObject:
     resource = _HardenedXMIResource(_new_uri(filename), filename=filename, data=data)
     resource.resource_set = rset
     rset.resources[filename] = resource
-    resource.load()
+    with _recursion_room(MAX_MODEL_DEPTH):  # pyecore's eResource climbs the containers
+        resource.load()
     return _single_root(resource, filename)
 
 
@@ -492,7 +608,8 @@ def dumps_json(root: EObject) -> bytes:
     previous = root.eResource
     resource.append(root)
     try:
-        resource.save()
+        with _recursion_room(_writable_depth(root)):
+            resource.save()
     finally:
         resource.remove(root)
         if previous is not None:
@@ -509,15 +626,29 @@ class _LocatedJsonResource(JsonResource):
     def load(self, options=None):  # noqa: D102
         try:
             text = self._data.decode("utf-8-sig")
-            json_value = json.loads(text)
+            with _recursion_room(MAX_MODEL_DEPTH):
+                json_value = loads_bounded(text, allow_nan=False)
+                self._decode(json_value, options)
+        except JsonLimitError as exc:
+            raise ValidationError(str(exc), file=self._filename) from None
         except UnicodeDecodeError as exc:
             raise ValidationError(f"not UTF-8 text (byte {exc.start})", file=self._filename) from None
         except RecursionError:
-            raise ValidationError("the JSON is nested too deeply", file=self._filename) from None
+            raise ValidationError(
+                f"the model is nested too deeply (more than {MAX_MODEL_DEPTH} objects)", file=self._filename
+            ) from None
         except json.JSONDecodeError as exc:
             raise ValidationError(
                 f"malformed JSON: {exc.msg}", file=self._filename, line=exc.lineno, column=exc.colno
             ) from None
+        for root in self.contents:
+            _resolve_proxies(root, self._filename)
+            for obj in walk(root):
+                for message in _eint_errors(obj):
+                    raise ValidationError(f"{_json_label(obj)}: {message}", file=self._filename)
+
+    def _decode(self, json_value: Any, options) -> None:
+        """pyecore's objects from the parsed JSON (its ``load`` after ``json.load``)."""
         self.options = options or {}
         self.cache_enabled = True
         values = json_value if isinstance(json_value, list) else [json_value]
@@ -528,15 +659,23 @@ class _LocatedJsonResource(JsonResource):
                 self.to_obj(value, first=True)
             for inst, refs in self._load_href.items():
                 self.process_inst(inst, refs)
-        except RosaadlError:
+        except (RosaadlError, RecursionError):
             raise
         except Exception as exc:
             raise ValidationError(f"does not conform to the metamodel: {exc}", file=self._filename) from None
         self._load_href.clear()
         self._find_feature.cache_clear()
         self.cache_enabled = False
-        for root in self.contents:
-            _resolve_proxies(root, self._filename)
+
+
+def _json_label(obj: EObject) -> str:
+    """``Field 'x' in Message 'Image'``: where an object is, for errors without a line."""
+    parts = []
+    while obj is not None:
+        name = getattr(obj, "name", None)
+        parts.append(f"{obj.eClass.name} {name!r}" if isinstance(name, str) else obj.eClass.name)
+        obj = obj.eContainer()
+    return " in ".join(parts[:3])
 
 
 def _resolve_proxies(root: EObject, filename: str) -> None:

@@ -43,7 +43,7 @@ from rosaadl.exporters.rclpy.nodes import NodeBuilder, NodeClass
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.render import render_template
 from rosaadl.exporters.rclpy.topics import Topology
-from rosaadl.fileio import existing, safe_join, sweep_temporaries, write_files
+from rosaadl.fileio import existing, loads_bounded, safe_join, sweep_temporaries, write_files
 from rosaadl.properties import own_property
 
 __all__ = [
@@ -627,7 +627,7 @@ def _load_manifest(output: Path, result: GenerationResult) -> tuple[dict[tuple[s
     if not path.is_file():
         return {}, []
     try:
-        document = json.loads(path.read_bytes().decode("utf-8"))
+        document = loads_bounded(path.read_bytes().decode("utf-8"))
         links = document["links"]
         if not isinstance(links, list):
             raise TypeError("links is not a list")
@@ -644,11 +644,15 @@ def _load_manifest(output: Path, result: GenerationResult) -> tuple[dict[tuple[s
                     for uri, marker in targets:
                         if uri and marker and source:
                             keys[(uri, marker)] = source
-    except (ValueError, KeyError, TypeError, AttributeError) as exc:
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        # JsonLimitError (long integers, deep nesting) and UnicodeDecodeError are ValueErrors
         result.diagnostics.append(
             Diagnostic(
                 "warning",
-                f"the previous generation trace is unreadable ({exc.__class__.__name__}: {exc}); ignored",
+                f"the previous generation trace is unreadable ({exc.__class__.__name__}: {exc}); ignored:"
+                " hand-written blocks are kept by marker name (unmatched ones as orphans) and"
+                " renames are not followed; restore the file from version control to use it,"
+                " or delete it to regenerate without it",
                 Location(file=str(path)),
             )
         )

@@ -21,6 +21,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import model
 from rosaadl.errors import NameResolutionError, ParseError
+from rosaadl.fileio import JsonLimitError, loads_bounded
 from rosaadl.importers import ros_msg
 from rosaadl.importers.rosmod_text.context import ImportContext
 from rosaadl.importers.rosmod_text.statements import (
@@ -46,13 +47,13 @@ def looks_like_json(text: str) -> bool:
 def read_v04(text: str, shown: str, rel: str, project: EObject, ctx: ImportContext) -> None:
     """Fill ``project`` from the v0.4 file ``text`` (named ``shown``; ``rel`` is its project path)."""
     try:
-        data = json.loads(text)
+        data = loads_bounded(text)
     except json.JSONDecodeError as exc:
         raise ParseError(
             f"malformed JSON: {exc.msg}", file=shown, line=exc.lineno, column=exc.colno
         ) from None
-    except RecursionError:
-        raise ParseError("the JSON document is nested too deeply", file=shown) from None
+    except JsonLimitError as exc:
+        raise ParseError(str(exc), file=shown) from None
     if _kind(data) != "Project":
         raise ParseError("expected a ROSMOD v0.4 project (a jsonpickle __main__.Project object)", file=shown)
     _Reader(_object_ids(data, shown), shown, rel, ctx).project(data, project)

@@ -18,6 +18,7 @@ from typing import Any
 
 from rosaadl.arguments import expect_path
 from rosaadl.errors import ImportFormatError, Location
+from rosaadl.fileio import JsonLimitError, loads_bounded
 from rosaadl.importers.json_limits import MAX_JSON_VALUES, json_value_bound
 
 __all__ = ["MAX_TOTAL_BYTES", "MAX_MEMBERS", "load_project_json", "fail"]
@@ -111,7 +112,7 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
             path="project.json",
         )
     try:
-        doc = json.loads(data.decode("utf-8-sig"))
+        doc = loads_bounded(bytes(data).decode("utf-8-sig"))
     except UnicodeDecodeError as exc:
         raise fail(
             f"project.json is not UTF-8 text (byte {exc.start})", filename, path="project.json"
@@ -124,8 +125,8 @@ def load_project_json(path: str | os.PathLike[str]) -> dict[str, Any]:
             line=exc.lineno,
             column=exc.colno,
         ) from None
-    except RecursionError:
-        raise fail("project.json is nested too deeply", filename, path="project.json") from None
+    except JsonLimitError as exc:
+        raise fail(f"project.json: {exc}", filename, path="project.json") from None
     if (
         not isinstance(doc, dict)
         or not isinstance(doc.get("rootHash"), str)

@@ -51,8 +51,8 @@ def command(
     report.note(loaded.warnings)
     counts = {
         "components": len(model.component_instances(instance)),
-        "features": sum(1 for o in instance.eAllContents() if model.is_a(o, "FeatureInstance")),
-        "connections": sum(1 for o in instance.eAllContents() if model.is_a(o, "ConnectionInstance")),
+        "features": sum(1 for o in model.walk(instance) if model.is_a(o, "FeatureInstance")),
+        "connections": sum(1 for o in model.walk(instance) if model.is_a(o, "ConnectionInstance")),
     }
     written = model.save(loaded.model, out)
     options.progress(f"wrote {written}")

@@ -9,6 +9,7 @@ classifiers that do not resolve are recorded as errors, raised together once the
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from pyecore.ecore import EObject
@@ -26,15 +27,36 @@ from .order import SUBCOMPONENT_ORDER, in_osate_order
 if TYPE_CHECKING:
     from .instantiator import Instantiator
 
-__all__ = ["MAX_COMPONENT_INSTANCES", "populate"]
+__all__ = ["MAX_COMPONENT_INSTANCES", "MAX_HIERARCHY_DEPTH", "populate"]
 
 #: Upper bound on component instances, so that a mistyped array size fails instead of hanging.
 MAX_COMPONENT_INSTANCES = 2_000_000
 
+#: Upper bound on the nesting of component instances: the deepest instance model rosaadl makes,
+#: and so the deepest it must read back (:data:`rosaadl.model.MAX_MODEL_DEPTH` leaves room).
+MAX_HIERARCHY_DEPTH = 1_000
+
 
 def populate(st: Instantiator, ci: ComponentMirror, ancestry: list[EObject]) -> None:
     """Make what component ``ci`` holds, and its subcomponents' (``ancestry``: the subcomponents
-    above it, to find containment cycles)."""
+    above it, to find containment cycles).
+
+    Depth first without recursion: each component's work is a generator that yields the
+    children to build before it goes on, and a stack of those generators replaces Python's, so
+    the depth of a hierarchy is bounded by :data:`MAX_HIERARCHY_DEPTH`, not by the interpreter.
+    """
+    stack = [_populate_steps(st, ci, ancestry)]
+    while stack:
+        step = next(stack[-1], None)
+        if step is None:
+            stack.pop()
+        else:
+            stack.append(_populate_steps(st, *step))
+
+
+def _populate_steps(
+    st: Instantiator, ci: ComponentMirror, ancestry: list[EObject]
+) -> Iterator[tuple[ComponentMirror, list[EObject]]]:
     st.components.append(ci)  # in preorder
     resolver = st.resolver
     classifier = ci.node.classifier
@@ -50,7 +72,7 @@ def populate(st: Instantiator, ci: ComponentMirror, ancestry: list[EObject]) -> 
             SUBCOMPONENT_ORDER,
         )
         for sub in subs:
-            _instantiate_subcomponent(st, ci, sub, ancestry)
+            yield from _instantiate_subcomponent(st, ci, sub, ancestry)
         st.factory.extend(ci.obj, "componentInstances", [child.obj for child in ci.children])
     if ci.node.ctype is not None or (classifier is not None and _model.is_a(classifier, "ComponentType")):
         instantiate_features(st, ci)
@@ -60,9 +82,15 @@ def populate(st: Instantiator, ci: ComponentMirror, ancestry: list[EObject]) -> 
 
 def _instantiate_subcomponent(
     st: Instantiator, ci: ComponentMirror, sub: EObject, ancestry: list[EObject]
-) -> None:
+) -> Iterator[tuple[ComponentMirror, list[EObject]]]:
+    """Make the instances of ``sub`` in ``ci``; yield each with its ancestry, to be populated."""
     resolver = st.resolver
     parent_path = LazyPath(ci)
+    if len(ancestry) >= MAX_HIERARCHY_DEPTH:
+        raise ModelError(
+            f"the component hierarchy is deeper than {MAX_HIERARCHY_DEPTH} levels",
+            resolver.location(sub, path=f"{parent_path}.{sub.name}"),
+        )
     if any(sub is a for a in ancestry):
         st.error(
             f"containment cycle: subcomponent {sub.name} contains itself",
@@ -134,7 +162,7 @@ def _instantiate_subcomponent(
         )
         ci.children.append(child)
         ci.by_sub.setdefault(key, []).append(child)
-        populate(st, child, [*ancestry, sub])
+        yield child, [*ancestry, sub]
 
 
 def _prototype_classifier(st: Instantiator, ci: ComponentMirror, sub: EObject, name: str) -> EObject | None:
