@@ -645,18 +645,17 @@ def _load_manifest(output: Path, result: GenerationResult) -> tuple[dict[tuple[s
                         if uri and marker and source:
                             keys[(uri, marker)] = source
     except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
-        # JsonLimitError (long integers, deep nesting) and UnicodeDecodeError are ValueErrors
-        result.diagnostics.append(
-            Diagnostic(
-                "warning",
-                f"the previous generation trace is unreadable ({exc.__class__.__name__}: {exc}); ignored:"
-                " hand-written blocks are kept by marker name (unmatched ones as orphans) and"
-                " renames are not followed; restore the file from version control to use it,"
-                " or delete it to regenerate without it",
-                Location(file=str(path)),
-            )
-        )
-        return {}, []
+        # JsonLimitError (long integers, deep nesting) and UnicodeDecodeError are ValueErrors.
+        # Regenerating without the trace would orphan the blocks of renamed elements: stop
+        # before writing anything, and say how to go on.
+        reason = f"{exc.__class__.__name__}: {exc}"
+        raise GenerationError(
+            f"the previous generation trace is unreadable ({reason[:200]}); nothing was written:"
+            " restore the file from version control to use it, or delete it to regenerate without"
+            " it (hand-written blocks are then kept by marker name, unmatched ones as orphans, and"
+            " renames are not followed)",
+            file=str(path),
+        ) from None
     return keys, files
 
 

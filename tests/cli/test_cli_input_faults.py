@@ -162,15 +162,19 @@ def test_webgmex_with_an_integer_past_the_limit(tmp_path, capsys):
         b'{"links": [',
     ],
 )
-def test_a_corrupted_generation_trace_is_named_with_the_way_on(tmp_path, capsys, payload):
+def test_a_corrupted_generation_trace_is_a_located_error_with_the_way_on(tmp_path, capsys, payload):
     out = tmp_path / "ws" / "src"
     args = ["generate", "rclpy", str(SYSTEMS), "--root", "sys_rover::rover.impl", "-o", str(out)]
     assert run(args, capsys)[0] == 0
     (out / MANIFEST_NAME).write_bytes(payload)
+    before = {p: p.read_bytes() for p in out.rglob("*") if p.is_file()}
     code, stdout, err = run(args, capsys)
     text = stdout + err
-    assert code == 0 and "Traceback" not in text and "internal error" not in text, text
+    assert code == 1 and "Traceback" not in text and "internal error" not in text, text
     (line,) = [x for x in text.splitlines() if "trace is unreadable" in x]
-    assert line.startswith(f"{out / MANIFEST_NAME}: warning:") or MANIFEST_NAME in line.split(":")[0], line
+    assert line.startswith(f"error: {out / MANIFEST_NAME}:"), line
     assert "delete it to regenerate without it" in line and "restore the file" in line
+    assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before  # nothing written
+    (out / MANIFEST_NAME).unlink()
+    assert run(args, capsys)[0] == 0
     json.loads((out / MANIFEST_NAME).read_text())  # the next trace is whole again

@@ -279,8 +279,12 @@ def test_the_generation_trace_is_a_trace_model(tmp_path):
     assert targets == [(TRACKER, "ocv_color_tracking.image_tracker.cb_msg")]
     assert index.links_from(thread)
     (tmp_path / MANIFEST_NAME).write_text('{"links": 3}')
-    result = generate_workspace(instance, tmp_path, options=OPTIONS)
-    assert any("trace is unreadable" in d.message for d in result.diagnostics)
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    with pytest.raises(GenerationError, match="trace is unreadable.*delete it to regenerate without it"):
+        generate_workspace(instance, tmp_path, options=OPTIONS)
+    assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
+    (tmp_path / MANIFEST_NAME).unlink()  # the way on the message gives
+    assert generate_workspace(instance, tmp_path, options=OPTIONS).changes
 
 
 def test_a_hostile_generation_trace_reads_nothing_outside(tmp_path):
