@@ -78,6 +78,11 @@ def _version() -> str:
 # =============================================================================== tables
 
 
+def _wcrt(row: Any) -> Any:
+    """A task's WCRT as shown: ``>=X`` when it is a lower bound (the analysis passed its work bound)."""
+    return row.wcrt if getattr(row, "wcrt_exact", True) else f">={_cell(row.wcrt)}"
+
+
 def _cell(value: Any, digits: int = 2) -> str:
     if value is None:
         return "–"
@@ -299,7 +304,7 @@ def _tables(view: dict[str, Any], report: Any) -> list[dict[str, Any]]:
             for t in dom.tasks:
                 rows.append(
                     _row(
-                        [short_path(t.path), t.priority, t.period, t.capacity, t.deadline, t.wcrt, t.met],
+                        [short_path(t.path), t.priority, t.period, t.capacity, t.deadline, _wcrt(t), t.met],
                         "bad" if t.met is False else "",
                     )
                 )

@@ -24,6 +24,7 @@ from rosaadl.analysis.schedulability import (
 from rosaadl.analysis.simulation import simulate, simulation_text
 from rosaadl.analysis.tasks import Processor, Scheduler, Task, TaskSet, taskset_from_instance
 from rosaadl.analysis.work_bounds import RTA_STEP_LIMIT
+from rosaadl.exporters.report import render_report
 
 LIMIT_S = 10
 # Utilisation exactly 1, co-prime periods: the busy period is the hyperperiod (~10⁹ jobs).
@@ -54,6 +55,16 @@ def test_fixed_priority_full_load_stops_at_the_work_bound_with_a_miss():
         "t1013": 2022,
         "t1019": 3041,
     }
+
+
+def test_the_html_report_shows_a_lower_bound_as_such():
+    threads = [(f"t{p}", (4 * p, "us"), (p, "us")) for p in (1009, 1013, 1019, 1021)]
+    root = _instance(threads, protocol="RMS")
+    report = run_analyses(root, only="sched")
+    html, _ = render_report(root, report)
+    row = {r.name.rsplit(".", 1)[-1]: r for r in report.schedulability.domains[0].tasks}["t1021"]
+    assert not row.wcrt_exact
+    assert f"&gt;={row.wcrt:,}".replace(",", " ") in html
 
 
 def test_public_response_times_leave_a_cut_task_undecided():
