@@ -54,6 +54,8 @@ __all__ = [
     "format_table",
     "process_peak_mib",
     "read_rows",
+    "reset_peak",
+    "status_kib",
 ]
 
 ROWS_ENV = "ROSAADL_BENCH_ROWS"
@@ -64,7 +66,8 @@ _CLEAR_REFS = Path("/proc/self/clear_refs")
 # --------------------------------------------------------------------------- memory
 
 
-def _status_kib(key: str) -> int | None:
+def status_kib(key: str) -> int | None:
+    """A field of ``/proc/self/status`` in KiB (``"VmRSS:"``, ``"VmHWM:"``); None off Linux."""
     try:
         with _STATUS.open() as status:
             for line in status:
@@ -75,14 +78,14 @@ def _status_kib(key: str) -> int | None:
     return None
 
 
-def _reset_peak() -> int | None:
+def reset_peak() -> int | None:
     """Reset the resident high-water mark to the resident memory now; that memory in KiB, or None
     where the kernel offers no reset."""
     try:
         _CLEAR_REFS.write_text("5")
     except OSError:
         return None
-    return _status_kib("VmRSS:")
+    return status_kib("VmRSS:")
 
 
 def process_peak_mib() -> float:
@@ -90,7 +93,7 @@ def process_peak_mib() -> float:
 
     ``VmHWM`` belongs to the process image, so it starts afresh at ``exec``; ``ru_maxrss`` (the
     fallback off Linux) would carry the parent's high-water mark into the child."""
-    peak = _status_kib("VmHWM:")
+    peak = status_kib("VmHWM:")
     if peak is None:
         import resource
 
@@ -121,7 +124,7 @@ class Timing:
     def _call(self, action: Callable[..., Any], args: tuple, memory: bool, keep: bool) -> float:
         self.result = None  # the previous round's result is not part of this round's heap
         gc.collect()
-        start_rss = _reset_peak() if memory else None
+        start_rss = reset_peak() if memory else None
         start_wall, start_cpu = time.perf_counter(), time.process_time()
         result = action(*args)
         cpu = time.process_time() - start_cpu
@@ -130,7 +133,7 @@ class Timing:
             self.result = result
         del result
         if start_rss is not None:
-            peak = _status_kib("VmHWM:")
+            peak = status_kib("VmHWM:")
             if peak is not None:
                 grown = max(0, peak - start_rss) / 1024
                 self.peak_mib = grown if self.peak_mib is None else min(self.peak_mib, grown)

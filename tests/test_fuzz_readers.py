@@ -25,6 +25,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from benchmarks.harness import reset_peak, status_kib
 from rosaadl import model
 from rosaadl.cli import main
 from rosaadl.errors import RosaadlError
@@ -189,33 +190,14 @@ def mutated(draw, data: bytes) -> bytes:
 # --------------------------------------------------------------------------- the check
 
 
-def _status_kib(key: str) -> int | None:
-    try:
-        for line in Path("/proc/self/status").read_text().splitlines():
-            if line.startswith(key):
-                return int(line.split()[1])
-    except (OSError, ValueError, IndexError):
-        pass
-    return None
-
-
-def _reset_peak() -> int | None:
-    """Reset the resident high-water mark (Linux); the resident KiB now, None where impossible."""
-    try:
-        Path("/proc/self/clear_refs").write_text("5")
-    except OSError:
-        return None
-    return _status_kib("VmRSS:")
-
-
 def _run(args: list[str]) -> tuple[int, str, str, float]:
     out, err = io.StringIO(), io.StringIO()
-    before = _reset_peak()
+    before = reset_peak()
     start = time.perf_counter()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = main(args)
     took = time.perf_counter() - start
-    peak = _status_kib("VmHWM:") if before is not None else None
+    peak = status_kib("VmHWM:") if before is not None else None
     if peak is not None:
         grown = (peak - before) / 1024
         assert grown < PEAK_MIB, f"{args}: {grown:.0f} MiB above the memory resident before"

@@ -21,6 +21,7 @@ from rosaadl.importers.cheddar import loads_cheddar
 from rosaadl.importers.cheddar.vocabulary import CP
 from rosaadl.importers.json_limits import json_value_bound
 from rosaadl.properties import own_property
+from tests.conftest import ROOT
 
 
 def test_cheddar_repeated_unknown_section_is_read_once_with_one_counted_warning() -> None:
@@ -53,14 +54,16 @@ def test_cheddar_warning_repeated_by_many_tasks_is_reported_once_with_its_count(
 
 def _peak_rss_of_child(code: str, *args: str) -> tuple[int, str]:
     """Run ``code`` in a fresh interpreter; its peak resident memory (bytes, VmHWM) and output."""
-    script = code + (
-        "\nimport sys\n"
-        "for line in open('/proc/self/status'):\n"
-        "    if line.startswith('VmHWM:'):\n"
-        "        print('PEAK', int(line.split()[1]) * 1024)\n"
+    script = (
+        code + "\nfrom benchmarks.harness import status_kib\nprint('PEAK', status_kib('VmHWM:') * 1024)\n"
     )
     done = subprocess.run(
-        [sys.executable, "-c", script, *args], capture_output=True, text=True, timeout=120, check=False
+        [sys.executable, "-c", script, *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+        cwd=ROOT,
     )
     assert done.returncode == 0, done.stderr
     peak = next(int(line.split()[1]) for line in done.stdout.splitlines() if line.startswith("PEAK "))
@@ -106,14 +109,10 @@ def test_json_value_bound_counts_values_and_leaves_out_commas_in_strings() -> No
 
 _LONG_TOKENS = r"""
 import gc, sys
+from benchmarks.harness import reset_peak, status_kib
 from rosaadl.errors import RosaadlError
 from rosaadl.importers.aadl_syntax import parse
 from rosaadl.importers.aadl_text import read_string
-
-def resident(field):
-    for line in open('/proc/self/status'):
-        if line.startswith(field):
-            return int(line.split()[1]) * 1024
 
 def package(value):
     head = 'package P\npublic\n  data D\n  properties\n    Source_Text => ('
@@ -132,20 +131,24 @@ cases = {
 read_string(package('"warm up"'), 'warm.aadl')
 for name, text in cases.items():
     gc.collect()
-    open('/proc/self/clear_refs', 'w').write('5')
-    before = resident('VmRSS:')
+    before = reset_peak() * 1024
     try:
         read_string(text, 'long.aadl') if 'string' in name else parse(text, 'long.aadl')
     except RosaadlError as exc:
         assert exc.location.line, exc
-    print('CASE', name, resident('VmHWM:') - before, len(text))
+    print('CASE', name, status_kib('VmHWM:') * 1024 - before, len(text))
 """
 
 
 def test_aadl_long_tokens_are_lexed_in_memory_linear_in_their_length() -> None:
     """A 1 MB string, integer or gap costs a few times its size, not 300 bytes per character."""
     done = subprocess.run(
-        [sys.executable, "-c", _LONG_TOKENS], capture_output=True, text=True, timeout=120, check=False
+        [sys.executable, "-c", _LONG_TOKENS],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+        cwd=ROOT,
     )
     assert done.returncode == 0, done.stderr
     cases = [line.split()[1:] for line in done.stdout.splitlines() if line.startswith("CASE ")]
