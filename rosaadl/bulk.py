@@ -13,12 +13,12 @@ body. :func:`gc_paused` keeps the cyclic garbage collector out of the way while 
 from __future__ import annotations
 
 import gc
-import importlib.metadata
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from functools import cache
 from typing import Any
 
+import pyecore
 from pyecore.ecore import EClass, EEnum, EObject
 from pyecore.innerutils import InternalSet
 from pyecore.ordered_set_patch import ordered_set
@@ -44,7 +44,7 @@ def check_pyecore_version(version: str) -> None:
         )
 
 
-check_pyecore_version(importlib.metadata.version("pyecore"))
+check_pyecore_version(pyecore.__version__)  # the module's own, no scan of the installed metadata
 
 OrderedSet = ordered_set.OrderedSet
 
