@@ -30,18 +30,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from rosaadl.analysis.demand import ResourceDemand
-from rosaadl.analysis.instance_values import (
-    PropertyReader,
-    category_of,
-    instance_root,
-    system_modes,
-)
+from rosaadl.analysis.deployment_problem import DeploymentProblem, deployment_problem
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, short_path, table
-from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
 from rosaadl.errors import Diagnostic, Location, ModelError
-from rosaadl.model import component_instances
 
 __all__ = [
     "Placement",
@@ -147,176 +139,20 @@ class DeploymentResult:
         }
 
 
-# =============================================================================== problem
-
-
-@dataclass
-class _Thread:
-    path: str
-    utilization: Fraction | None
-    reference_mips: Fraction | None
-    budget_mips: Fraction
-    period_us: Fraction | None
-    cet_us: Fraction | None
-    deadline_us: Fraction | None
-    priority: int
-    dispatch: Dispatch
-
-
-@dataclass
-class _Process:
-    path: str
-    threads: list[_Thread]
-    budget_mips: Fraction
-
-
-@dataclass
-class _Core:
-    path: str
-    capacity: Fraction
-    scheduler: Scheduler
-    preemptive: bool
-
-
-class _Problem:
-    def __init__(
-        self,
-        processes: list[_Process],
-        cores: list[_Core],
-        allowed: list[list[int]],
-        schedulability: bool,
-        reader: PropertyReader,
-        times: list[dict[int, dict[str, Fraction]] | None] | None = None,
-    ) -> None:
-        self.processes = processes
-        self.cores = cores
-        self.allowed = allowed
-        self.check_schedulability = schedulability
-        self.reader = reader
-        # times[p][c][thread path]: the execution time (us) of a thread of p on core c, when given
-        self.times = times if times is not None else [None] * len(processes)
-        # load[p][c]: the load process p puts on core c (None: it cannot run there)
-        self.load = [
-            [
-                self._load(p, c) if self.times[i] is None else self._given_load(i, k)
-                for k, c in enumerate(cores)
-            ]
-            for i, p in enumerate(processes)
-        ]
-        self._sched_cache: dict[tuple[int, tuple[int, ...]], bool] = {}
-        self._tasks: dict[tuple[int, int], list[Task]] = {}
-        self.sched_calls = 0
-
-    def _load(self, process: _Process, core: _Core) -> Fraction | None:
-        total = Fraction(0)
-        demand_only = Fraction(0)
-        for thread in process.threads:
-            if thread.utilization is not None:
-                if thread.reference_mips and core.capacity > 0:
-                    total += thread.utilization * thread.reference_mips / core.capacity
-                else:
-                    total += thread.utilization
-            elif thread.budget_mips > 0:
-                demand_only += thread.budget_mips
-        if total == 0 and demand_only == 0 and process.budget_mips > 0:
-            demand_only = process.budget_mips
-        if demand_only > 0:
-            if core.capacity <= 0:
-                return None
-            total += demand_only / core.capacity
-        return total
-
-    def _given_load(self, process: int, core_index: int) -> Fraction | None:
-        """Σ CET / Period with the execution times given for this core (None: not a candidate)."""
-        given = self.times[process]
-        cets = given.get(core_index) if given is not None else None
-        if cets is None:
-            return None
-        total = Fraction(0)
-        for thread in self.processes[process].threads:
-            cet = cets.get(thread.path)
-            if cet is not None and thread.period_us:
-                total += cet / thread.period_us
-        return total
-
-    def scale(self, thread: _Thread, core: _Core) -> Fraction:
-        if thread.reference_mips and core.capacity > 0:
-            return thread.reference_mips / core.capacity
-        return Fraction(1)
-
-    def tasks(self, process: int, core_index: int) -> list[Task]:
-        """The periodic threads of a process as tasks on a core (execution times scaled)."""
-        key = (process, core_index)
-        found = self._tasks.get(key)
-        if found is not None:
-            return found
-        core = self.cores[core_index]
-        given = self.times[process]
-        cets = given.get(core_index, {}) if given is not None else None
-        found = []
-        for thread in self.processes[process].threads:
-            cet = thread.cet_us if cets is None else cets.get(thread.path)
-            if cet is None or thread.period_us is None or not thread.dispatch.recurrent:
-                continue
-            capacity = cet * (self.scale(thread, core) if cets is None else 1)
-            if capacity <= 0:
-                continue
-            found.append(
-                Task(
-                    name=thread.path,
-                    period=_exact(thread.period_us),
-                    capacity=_exact(capacity),
-                    deadline=_exact(thread.deadline_us) if thread.deadline_us is not None else None,
-                    priority=thread.priority,
-                    dispatch=thread.dispatch,
-                    processor=core.path,
-                    path=thread.path,
-                )
-            )
-        self._tasks[key] = found
-        return found
-
-    def schedulable(self, core_index: int, members: tuple[int, ...]) -> bool:
-        """Feasibility of the periodic threads of ``members`` on one core (cached): Cheddar's
-        utilisation test when it accepts a preemptive core, else the full feasibility tests."""
-        if not self.check_schedulability or not members:
-            return True
-        key = (core_index, members)
-        cached = self._sched_cache.get(key)
-        if cached is not None:
-            return cached
-        from rosaadl.analysis.schedulability import analyze_schedulability, utilization_test
-
-        core = self.cores[core_index]
-        tasks = [t for index in members for t in self.tasks(index, core_index)]
-        verdict = True
-        if tasks and not (core.preemptive and utilization_test(core.scheduler, True, tasks) is True):
-            self.sched_calls += 1
-            taskset = TaskSet(tuple(tasks), (Processor(core.path, core.scheduler, core.preemptive),))
-            result = analyze_schedulability(taskset)
-            verdict = all(d.schedulable is not False for d in result.domains)
-        self._sched_cache[key] = verdict
-        return verdict
-
-
-def _exact(value: Fraction) -> int | Fraction:
-    return value.numerator if value.denominator == 1 else value
-
-
 # =============================================================================== search
 
 
 class _Search:
     """Branch and bound (exact) and a bin-packing heuristic over one problem."""
 
-    def __init__(self, problem: _Problem, node_limit: int) -> None:
+    def __init__(self, problem: DeploymentProblem, node_limit: int) -> None:
         self.p = problem
         self.node_limit = node_limit
         self.nodes = 0
         self.best: list[int] | None = None
         self.best_key: tuple[Fraction, Fraction] | None = None
         self.complete = True
-        n = len(problem.processes)
+        n = len(problem.units)
         # processes by decreasing heaviest load (ties: model order)
         self.order = sorted(
             range(n),
@@ -351,7 +187,7 @@ class _Search:
     def exact(self) -> None:
         """Depth-first branch and bound; ``complete`` stays True when it ran to the end."""
         problem = self.p
-        n, m = len(problem.processes), len(problem.cores)
+        n, m = len(problem.units), len(problem.cores)
         assignment = [-1] * n
         loads = [Fraction(0)] * m
         members: list[list[int]] = [[] for _ in range(m)]
@@ -400,7 +236,7 @@ class _Search:
         """Largest first on the least loaded core that passes, then moves and swaps of the
         processes of the most loaded cores while they lower (max load, balance)."""
         problem = self.p
-        n, m = len(problem.processes), len(problem.cores)
+        n, m = len(problem.units), len(problem.cores)
         assignment = [-1] * n
         loads = [Fraction(0)] * m
         members: list[list[int]] = [[] for _ in range(m)]
@@ -481,25 +317,7 @@ class _Search:
         return False
 
 
-# =============================================================================== extraction
-
-
-def _scheduler_of(reader: PropertyReader, core: Any) -> tuple[Scheduler, bool, bool]:
-    """(scheduler, preemptive, given) from the core or the processor that contains it."""
-    holders = [core]
-    parent = core.eContainer()
-    if parent is not None and category_of(parent) == "processor":
-        holders.append(parent)
-    for holder in holders:
-        for name in ("Deployment_Properties::Scheduling_Protocol", "Cheddar_Properties::Scheduler"):
-            value = reader.value(holder, name)
-            items = value if isinstance(value, list) else [value] if value is not None else []
-            for item in items:
-                found = Scheduler.from_name(str(item))
-                if found is not None:
-                    preemptive = reader.value(holder, "Preemptive_Scheduler")
-                    return found, preemptive if isinstance(preemptive, bool) else True, True
-    return Scheduler.RATE_MONOTONIC, True, False
+# =============================================================================== entry
 
 
 def search_deployment(
@@ -527,122 +345,16 @@ def search_deployment(
     process can run only on the cores listed for it; there its threads take the given times
     (a thread not listed takes none), unscaled, over the Periods of the instance.
     """
-    from rosaadl import model as _model
-
-    root = instance_root(source)
-    diagnostics: list[Diagnostic] = []
-    analysis = ResourceDemand(root, diagnostics)
-    reader = analysis.reader
-    mode = system_modes(root)[0]
-
-    def resolve(items: Iterable[Any], what: str) -> list[Any]:
-        out = []
-        for item in items:
-            if isinstance(item, str):
-                try:
-                    item = _model.find_instance(root, item)
-                except ModelError as exc:
-                    raise ModelError(f"{what}: {exc.message}", exc.location) from None
-            if category_of(item) != what.split()[0]:
-                raise ModelError(
-                    f"{_model.instance_path(item)} is not a {what}", Location(path=_model.instance_path(item))
-                )
-            out.append(item)
-        return out
-
-    components = analysis.components()
-    if processes is None:
-        process_objs = [
-            ci
-            for ci in components
-            if category_of(ci) == "process"
-            and any(category_of(t) == "thread" for t in component_instances(ci, include_root=False))
-            and mode.active(ci)
-        ]
-    else:
-        process_objs = resolve(processes, "process")
-    if processors is None:
-        core_objs = [
-            ci
-            for ci in components
-            if category_of(ci) == "processor"
-            and not any(category_of(c) == "processor" for c in ci.componentInstances)
-            and mode.active(ci)
-        ]
-    else:
-        core_objs = resolve(processors, "processor")
-    if not core_objs:
-        raise ModelError("deployment search: the model has no processor to bind to", Location(path=root.name))
-
-    proc_list = []
-    for obj in process_objs:
-        threads = []
-        for t in component_instances(obj, include_root=False):
-            if category_of(t) != "thread":
-                continue
-            load = analysis.thread_load(t, mode)
-            dispatch = Dispatch.from_name(reader.enum(t, "Thread_Properties::Dispatch_Protocol", mode) or "")
-            deadline = reader.seconds(t, "Timing_Properties::Deadline", mode)
-            priority = reader.value(t, "Thread_Properties::Priority", mode)
-            threads.append(
-                _Thread(
-                    path=load.path,
-                    utilization=load.utilization,
-                    reference_mips=analysis.reference_mips(t, mode),
-                    budget_mips=reader.mips_budget(t, mode),
-                    period_us=load.period_us,
-                    cet_us=load.cet_us,
-                    deadline_us=deadline * _US if deadline is not None and deadline > 0 else None,
-                    priority=priority if isinstance(priority, int) and not isinstance(priority, bool) else 0,
-                    dispatch=dispatch or Dispatch.PERIODIC,
-                )
-            )
-        proc_list.append(_Process(_model.instance_path(obj), threads, reader.mips_budget(obj, mode)))
-    core_list = []
-    defaulted = []
-    for obj in core_objs:
-        scheduler, preemptive, given = _scheduler_of(reader, obj)
-        if not given:
-            defaulted.append(_model.instance_path(obj))
-        core_list.append(
-            _Core(_model.instance_path(obj), reader.mips_capacity(obj, mode), scheduler, preemptive)
-        )
-    if schedulability and defaulted:
-        diagnostics.append(
-            Diagnostic(
-                "info",
-                f"{len(defaulted)} candidate processors have no Scheduling_Protocol; "
-                "schedulability is checked under preemptive rate monotonic scheduling",
-                Location(path=defaulted[0]),
-            )
-        )
-    index = {c.path: i for i, c in enumerate(core_list)}
-    allowed_lists = []
-    for proc in proc_list:
-        wanted = (
-            None if allowed is None else allowed.get(proc.path) or allowed.get(proc.path.partition(".")[2])
-        )
-        if wanted is None:
-            allowed_lists.append(list(range(len(core_list))))
-            continue
-        chosen = []
-        for path in wanted:
-            key = path if path in index else f"{root.name}.{path}"
-            if key not in index:
-                raise ModelError(f"allowed core {path!r} of {proc.path} is not a candidate processor")
-            chosen.append(index[key])
-        allowed_lists.append(sorted(chosen))
-    times = _given_times(root.name or "", proc_list, index, execution_times) if execution_times else None
-    problem = _Problem(proc_list, core_list, allowed_lists, schedulability, reader, times)
-    for p, proc in enumerate(proc_list):
-        if all(problem.load[p][c] is None for c in allowed_lists[p]):
-            diagnostics.append(
-                Diagnostic(
-                    "error",
-                    "process demands MIPS (SEI::MIPSBudget) but no candidate processor has SEI::MIPSCapacity",
-                    Location(path=proc.path),
-                )
-            )
+    problem = deployment_problem(
+        source,
+        processes,
+        processors,
+        allowed=allowed,
+        schedulability=schedulability,
+        execution_times=execution_times,
+    )
+    diagnostics = problem.diagnostics
+    proc_list, core_list = problem.units, problem.cores
 
     search = _Search(problem, node_limit)
     small = len(proc_list) <= exact_processes
@@ -698,7 +410,7 @@ def search_deployment(
             Diagnostic(
                 "error",
                 "no deployment passes the CPU load and schedulability checks",
-                Location(path=root.name),
+                Location(path=problem.root),
             )
         )
     nodes = search.nodes
@@ -711,7 +423,7 @@ def search_deployment(
         method,
     )
     return DeploymentResult(
-        root.name or "",
+        problem.root,
         method,
         optimal,
         feasible,
@@ -723,49 +435,7 @@ def search_deployment(
     )
 
 
-def _given_times(
-    root: str,
-    processes: list[_Process],
-    cores: dict[str, int],
-    given: Mapping[str, Mapping[str, Mapping[str, Any]]],
-) -> list[dict[int, dict[str, Fraction]] | None]:
-    """``execution_times`` as core index → thread path → CET in microseconds, per process."""
-
-    def full(path: str, prefix: str) -> str:
-        return path if path == prefix or path.startswith(prefix + ".") else f"{prefix}.{path}"
-
-    by_path = {p.path: i for i, p in enumerate(processes)}
-    out: list[dict[int, dict[str, Fraction]] | None] = [None] * len(processes)
-    for process_path, per_core in given.items():
-        index = by_path.get(full(process_path, root))
-        if index is None:
-            raise ModelError(f"execution times given for {process_path!r}, which is not a process searched")
-        threads = {t.path for t in processes[index].threads}
-        table: dict[int, dict[str, Fraction]] = {}
-        for core_path, per_thread in per_core.items():
-            core = cores.get(full(core_path, root))
-            if core is None:
-                raise ModelError(
-                    f"execution times of {process_path!r} given for {core_path!r}, which is not a candidate "
-                    "processor"
-                )
-            cets: dict[str, Fraction] = {}
-            for thread_path, seconds in per_thread.items():
-                path = full(thread_path, processes[index].path)
-                if path not in threads:
-                    raise ModelError(
-                        f"execution time given for {thread_path!r}, not a thread of {process_path!r}"
-                    )
-                value = Fraction(str(seconds)) if isinstance(seconds, float) else Fraction(seconds)
-                if value < 0:
-                    raise ModelError(f"negative execution time for {thread_path!r} of {process_path!r}")
-                cets[path] = value * _US
-            table[core] = cets
-        out[index] = table
-    return out
-
-
-def _key(problem: _Problem, assignment: Sequence[int]) -> tuple[Fraction, Fraction]:
+def _key(problem: DeploymentProblem, assignment: Sequence[int]) -> tuple[Fraction, Fraction]:
     loads = [Fraction(0)] * len(problem.cores)
     for p, c in enumerate(assignment):
         if c >= 0:

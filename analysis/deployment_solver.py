@@ -1,0 +1,427 @@
+"""The deployment problem as a constraint model, solved by OR-Tools CP-SAT.
+
+One Boolean per (unit, candidate core), exactly one per unit. Constraints: each core at most
+100 % loaded; each board's memory; the bus capacity against the traffic of unit pairs on
+different boards; per-core schedulability. Objectives, lexicographic (each stage minimises one
+with the ones before held at the values found): the highest core load, the total bus load
+(KByte/s crossing boards), the number of units moved from their current
+``Actual_Processor_Binding``. The longest chain latency is not an objective: rosaadl has no
+executor analysis to give a chain's latency under a binding yet.
+
+**Integers.** CP-SAT works on integers. Loads are exact fractions (Σ CET / Period); they are
+scaled by the least common multiple of their denominators when it is at most 10^9, so the model
+is *exact* (the solver's optimum is the exact optimum); otherwise by 10^6 (a resolution of one
+millionth of a core, 0.0001 %), rounded down. Memory (KByte) and traffic (KByte/s) are scaled
+the same way. Rounding down never cuts a binding that is feasible exactly; a binding the rounded
+model accepts is then checked exactly, with the same functions the analyses use.
+
+**Lazy cuts.** Schedulability under fixed priorities is not linear: each binding the solver
+returns is checked core by core (:meth:`DeploymentProblem.schedulable`, the response-time test
+where the core has priorities), as are the exact loads, memory and bus; a core that fails gets a
+cut "not all of these units together on this core" (on every identical core too: adding tasks
+never makes a core schedulable), and the stage is solved again, until the binding passes.
+
+**Determinism.** One search worker and a fixed seed; the time limit is CP-SAT's *deterministic*
+time (``max_deterministic_time``, about a second of work on a recent core), so the same model gives
+the same binding on any machine, with a wall-clock stop at twice the limit as a safeguard (the
+only case where two runs may differ). CP-SAT with several workers is not deterministic across
+runs, which is why one is used. The best binding of the baselines is given as a hint.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+from rosaadl.analysis.deployment_problem import DeploymentProblem, Evaluation
+
+__all__ = [
+    "EXACT_LIMIT",
+    "RESOLUTION",
+    "Objective",
+    "SolvedBinding",
+    "SolverOutcome",
+    "integer_scale",
+    "solve_deployment",
+]
+
+RESOLUTION = 10**6  #: the scale of a core's capacity when the exact one is larger than EXACT_LIMIT
+EXACT_LIMIT = 10**9
+_STAGE_SHARE = (0.6, 0.8, 1.0)  #: stage k may use the time up to this share of the binding's budget
+LATENCY_NOTE = "not computed: rosaadl has no executor analysis yet"
+
+
+def integer_scale(values: Iterable[Fraction]) -> tuple[int, bool]:
+    """(scale, exact): the least common multiple of the denominators when at most EXACT_LIMIT,
+    else (RESOLUTION, False)."""
+    scale = 1
+    for value in values:
+        scale = math.lcm(scale, value.denominator)
+        if scale > EXACT_LIMIT:
+            return RESOLUTION, False
+    return scale, True
+
+
+def _scaled(value: Fraction, scale: int) -> int:
+    return math.floor(value * scale)
+
+
+@dataclass(frozen=True)
+class Objective:
+    """One objective of the best binding: its value, the solver's bound and the gap between."""
+
+    name: str
+    value: Fraction | int | None
+    bound: Fraction | int | None
+    unit: str
+    note: str = ""
+
+    @property
+    def gap_percent(self) -> float | None:
+        if self.value is None or self.bound is None:
+            return None
+        if self.value == 0:
+            return 0.0
+        return max(0.0, float((Fraction(self.value) - Fraction(self.bound)) / Fraction(self.value) * 100))
+
+    def as_dict(self) -> dict[str, Any]:
+        def num(x: Fraction | int | None) -> float | int | None:
+            if x is None:
+                return None
+            return int(x) if Fraction(x).denominator == 1 else float(x)
+
+        out: dict[str, Any] = {
+            "name": self.name,
+            "value": num(self.value),
+            "bound": num(self.bound),
+            "gap_percent": None if self.gap_percent is None else round(self.gap_percent, 4),
+            "unit": self.unit,
+        }
+        if self.note:
+            out["note"] = self.note
+        return out
+
+
+@dataclass(frozen=True)
+class SolvedBinding:
+    """A binding (core index per unit), its exact evaluation and its objectives."""
+
+    assignment: tuple[int, ...]
+    evaluation: Evaluation
+    objectives: tuple[Objective, ...]
+    optimal: bool
+
+
+@dataclass(frozen=True)
+class SolverOutcome:
+    """What the solver found: the bindings, best first (empty when none), and how."""
+
+    status: str  #: "optimal", "feasible", "infeasible" (proven) or "unknown" (no binding in time)
+    bindings: tuple[SolvedBinding, ...]
+    scale: int
+    exact_scale: bool
+    seconds: float
+    cuts: int
+    solves: int
+
+    @property
+    def feasible(self) -> bool:
+        return bool(self.bindings)
+
+    @property
+    def best(self) -> SolvedBinding | None:
+        return self.bindings[0] if self.bindings else None
+
+
+@dataclass
+class _Model:
+    """The CP-SAT model of one problem, rebuilt for each binding kept."""
+
+    problem: DeploymentProblem
+    load_scale: int
+    memory_scale: int
+    traffic_scale: int
+    cuts: list[tuple[int, tuple[int, ...]]]
+    excluded: list[tuple[int, ...]]
+    model: Any = None
+    x: dict[tuple[int, int], Any] = field(default_factory=dict)
+    core_terms: list[list[tuple[int, Any]]] = field(default_factory=list)
+
+    def build(self) -> None:
+        from ortools.sat.python import cp_model
+
+        p = self.problem
+        m = cp_model.CpModel()
+        self.model = m
+        self.x = {}
+        self.core_terms = [[] for _ in p.cores]
+        for u in range(len(p.units)):
+            row = []
+            for c in p.candidates(u):
+                load = p.load[u][c] or Fraction(0)
+                if load > 1:
+                    continue
+                var = m.new_bool_var(f"x{u}_{c}")
+                self.x[u, c] = var
+                row.append(var)
+                self.core_terms[c].append((_scaled(load, self.load_scale), var))
+            m.add_exactly_one(row)
+        top = 0
+        for terms in self.core_terms:
+            if terms:
+                m.add(sum(w * v for w, v in terms) <= self.load_scale)
+                top = max(top, min(self.load_scale, sum(w for w, _ in terms)))
+        self.z = m.new_int_var(0, top, "max_load")
+        for terms in self.core_terms:
+            if terms:
+                m.add(sum(w * v for w, v in terms) <= self.z)
+        boards = p.boards()
+        on = {
+            (u, b): [self.x[u, c] for c in range(len(p.cores)) if p.cores[c].board == b and (u, c) in self.x]
+            for u in range(len(p.units))
+            for b in boards
+        }
+        for b, capacity in p.board_memory.items():
+            terms = [
+                (_scaled(p.units[u].memory_kbyte, self.memory_scale), var)
+                for u in range(len(p.units))
+                for var in on.get((u, b), [])
+            ]
+            terms = [(w, v) for w, v in terms if w > 0]
+            if terms:
+                m.add(sum(w * v for w, v in terms) <= _scaled(capacity, self.memory_scale))
+        crossing = []
+        if len(boards) > 1:
+            for u, v, rate in p.traffic:
+                weight = _scaled(rate, self.traffic_scale)
+                if weight <= 0:
+                    continue
+                y = m.new_bool_var(f"y{u}_{v}")
+                for b in boards:
+                    m.add(sum(on[u, b]) - sum(on[v, b]) <= y)
+                crossing.append((weight, y))
+        self.bus = sum(w * y for w, y in crossing) if crossing else m.new_constant(0)
+        if p.bus_capacity is not None and crossing:
+            m.add(self.bus <= _scaled(p.bus_capacity, self.traffic_scale))
+        moved = []
+        for u in range(len(p.units)):
+            if p.current[u]:
+                here = [self.x[u, c] for c in p.current[u] if (u, c) in self.x]
+                moved.append(1 - sum(here))
+        self.moves = sum(moved) if moved else m.new_constant(0)
+        for core, members in self.cuts:
+            self._add_cut(core, members)
+        for assignment in self.excluded:
+            m.add(sum(self.x[u, c] for u, c in enumerate(assignment)) <= len(assignment) - 1)
+
+    def _add_cut(self, core: int, members: tuple[int, ...]) -> None:
+        variables = [self.x.get((u, core)) for u in members]
+        if all(v is not None for v in variables):
+            self.model.add(sum(variables) <= len(members) - 1)
+
+    def cut(self, core: int, members: tuple[int, ...]) -> int:
+        """Forbid ``members`` together on ``core`` and on every core identical to it."""
+        added = 0
+        for other in _identical(self.problem, core):
+            self.cuts.append((other, members))
+            self._add_cut(other, members)
+            added += 1
+        return added
+
+    def hint(self, assignment: Sequence[int]) -> None:
+        self.model.clear_hints()
+        for (u, c), var in self.x.items():
+            self.model.add_hint(var, assignment[u] == c)
+
+    def assignment(self, solver: Any) -> tuple[int, ...]:
+        out = [-1] * len(self.problem.units)
+        for (u, c), var in self.x.items():
+            if solver.boolean_value(var):
+                out[u] = c
+        return tuple(out)
+
+
+def _identical(problem: DeploymentProblem, core: int) -> list[int]:
+    """``core`` and the cores whose tasks would be the same (same MIPS, scheduler, load column)."""
+    if problem.times and any(t is not None for t in problem.times):
+        return [core]
+    me = problem.cores[core]
+
+    def column(c: int) -> tuple[Any, ...]:
+        return tuple(problem.load[u][c] for u in range(len(problem.units)))
+
+    mine = column(core)
+    return [
+        c
+        for c, other in enumerate(problem.cores)
+        if c == core
+        or (
+            (other.capacity, other.scheduler, other.preemptive) == (me.capacity, me.scheduler, me.preemptive)
+            and column(c) == mine
+        )
+    ]
+
+
+def _cuts_for(problem: DeploymentProblem, assignment: Sequence[int], evaluation: Evaluation) -> list[Any]:
+    """What to forbid of a binding the rounded model accepted but the exact checks refuse:
+    (core, members) for a core over 100 % or not schedulable, else the whole binding."""
+    out = []
+    for c, members in enumerate(problem.members(assignment)):
+        if members and (evaluation.loads[c] > 1 or not problem.schedulable(c, members)):
+            out.append((c, members))
+    return out
+
+
+def solve_deployment(
+    problem: DeploymentProblem,
+    *,
+    time_limit: float = 10.0,
+    keep: int = 1,
+    seed: int = 0,
+    hints: Sequence[Sequence[int]] = (),
+) -> SolverOutcome:
+    """The ``keep`` best distinct bindings of ``problem`` under the lexicographic objectives
+    (see the module), within ``time_limit`` seconds of deterministic time in all. ``hints``:
+    bindings to start from (the first that passes every check is the incumbent)."""
+    from ortools.sat.python import cp_model
+
+    start = time.perf_counter()
+    load_scale, exact_load = integer_scale(
+        problem.load[u][c] or Fraction(0) for u in range(len(problem.units)) for c in problem.candidates(u)
+    )
+    memory_scale, exact_memory = integer_scale(
+        [u.memory_kbyte for u in problem.units] + list(problem.board_memory.values())
+    )
+    traffic_scale, exact_traffic = integer_scale(
+        [rate for _u, _v, rate in problem.traffic]
+        + ([problem.bus_capacity] if problem.bus_capacity is not None else [])
+    )
+    state = _Model(problem, load_scale, memory_scale, traffic_scale, [], [])
+    if any(not problem.candidates(u) for u in range(len(problem.units))):
+        return SolverOutcome("infeasible", (), load_scale, exact_load, time.perf_counter() - start, 0, 0)
+    budget = max(0.05, time_limit / max(1, keep))
+    bindings: list[SolvedBinding] = []
+    solves = cuts = 0
+    proven_infeasible = False
+    for _index in range(max(1, keep)):
+        state.build()
+        incumbent = None
+        for hint in hints:
+            if len(hint) == len(problem.units) and tuple(hint) not in state.excluded:
+                evaluation = problem.evaluate(hint)
+                if evaluation.feasible:
+                    incumbent = tuple(hint)
+                    break
+        stages = [("max_core_load", state.z), ("bus_load", state.bus), ("moves", state.moves)]
+        values: list[tuple[int, int, bool]] = []
+        used = 0.0
+        for stage, (_name, expression) in enumerate(stages):
+            limit = budget * _STAGE_SHARE[stage]
+            found = None
+            while True:
+                state.model.minimize(expression)
+                if incumbent is not None:
+                    state.hint(incumbent)
+                solver = cp_model.CpSolver()
+                solver.parameters.num_workers = 1
+                solver.parameters.random_seed = seed
+                solver.parameters.max_deterministic_time = max(0.01, limit - used)
+                solver.parameters.max_time_in_seconds = max(0.02, 2 * (limit - used)) + 1.0
+                status = solver.solve(state.model)
+                solves += 1
+                used += solver.deterministic_time
+                if status == cp_model.INFEASIBLE:
+                    proven_infeasible = stage == 0 and incumbent is None
+                    break
+                if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+                    break
+                assignment = state.assignment(solver)
+                evaluation = problem.evaluate(assignment)
+                if evaluation.feasible:
+                    found = (assignment, solver.objective_value, solver.best_objective_bound, status)
+                    break
+                new_cuts = _cuts_for(problem, assignment, evaluation)
+                if not new_cuts:  # memory or bus, rounded: forbid this binding
+                    state.excluded.append(assignment)
+                    state.model.add(
+                        sum(state.x[u, c] for u, c in enumerate(assignment)) <= len(assignment) - 1
+                    )
+                    cuts += 1
+                for core, members in new_cuts:
+                    cuts += state.cut(core, members)
+                if used >= limit:
+                    break
+            if found is None:
+                if incumbent is None:
+                    break
+                # the time ran out (or cuts closed the stage): the incumbent stays, without a bound
+                values.append((-1, -1, False))
+            else:
+                incumbent = found[0]
+                values.append((round(found[1]), math.floor(found[2] + 1e-9), found[3] == cp_model.OPTIMAL))
+            # hold this objective at the incumbent's value for the next stages
+            held = _stage_value(state, stage, incumbent)
+            state.model.add(expression <= held)
+        if incumbent is None:
+            break
+        bindings.append(_solved(problem, state, incumbent, values))
+        state.excluded.append(incumbent)
+    seconds = time.perf_counter() - start
+    if bindings:
+        status = "optimal" if bindings[0].optimal else "feasible"
+    else:
+        status = "infeasible" if proven_infeasible else "unknown"
+    return SolverOutcome(status, tuple(bindings), load_scale, exact_load, seconds, cuts, solves)
+
+
+def _stage_value(state: _Model, stage: int, assignment: Sequence[int]) -> int:
+    """The scaled value of objective ``stage`` of ``assignment`` in the model's integers."""
+    p = state.problem
+    if stage == 0:
+        sums = [0] * len(p.cores)
+        for u, c in enumerate(assignment):
+            sums[c] += _scaled(p.load[u][c] or Fraction(0), state.load_scale)
+        return max(sums, default=0)
+    if stage == 1:
+        return sum(
+            _scaled(rate, state.traffic_scale)
+            for u, v, rate in p.traffic
+            if p.cores[assignment[u]].board != p.cores[assignment[v]].board
+        )
+    return p.evaluate(assignment).moves
+
+
+def _solved(
+    problem: DeploymentProblem,
+    state: _Model,
+    assignment: tuple[int, ...],
+    values: list[tuple[int, int, bool]],
+) -> SolvedBinding:
+    evaluation = problem.evaluate(assignment)
+    scales = (state.load_scale, state.traffic_scale, 1)
+    exact_values: tuple[Any, ...] = (evaluation.max_load, evaluation.bus_kbyteps, evaluation.moves)
+    objectives = []
+    optimal = True
+    for stage, (name, unit) in enumerate(
+        (("max_core_load", "percent"), ("bus_load", "KByte/s"), ("moves", "units"))
+    ):
+        _value, bound, proven = values[stage] if stage < len(values) else (-1, -1, False)
+        optimal = optimal and proven
+        exact = exact_values[stage]
+        if bound < 0:
+            bound_value: Fraction | int | None = None
+        else:
+            bound_value = min(Fraction(bound, scales[stage]), Fraction(exact))
+            if proven and stage and optimal:
+                bound_value = Fraction(exact)
+        if name == "max_core_load":
+            exact = exact * 100
+            bound_value = None if bound_value is None else bound_value * 100
+        objectives.append(Objective(name, exact, bound_value, unit))
+        if name == "bus_load":
+            objectives.append(Objective("longest_chain_latency", None, None, "s", LATENCY_NOTE))
+    return SolvedBinding(assignment, evaluation, tuple(objectives), optimal)
