@@ -21,11 +21,13 @@ where the core has priorities), as are the exact loads, memory and bus; a core t
 cut "not all of these units together on this core" (on every identical core too: adding tasks
 never makes a core schedulable), and the stage is solved again, until the binding passes.
 
-**Determinism.** One search worker and a fixed seed; the time limit is CP-SAT's *deterministic*
-time (``max_deterministic_time``, about a second of work on a recent core), so the same model gives
-the same binding on any machine, with a wall-clock stop at twice the limit as a safeguard (the
-only case where two runs may differ). CP-SAT with several workers is not deterministic across
-runs, which is why one is used. The best binding of the baselines is given as a hint.
+**Determinism.** One search worker and a fixed seed: CP-SAT with several workers is not
+deterministic across runs (the workers race), so one is used. A stage that ends by proving its
+optimum then gives the same binding on every run. ``time_limit`` is wall-clock seconds (the
+limit a user waits for); a stage cut short by it may stop at another incumbent on a busier
+machine. With ``deterministic=True`` the limit is CP-SAT's deterministic time instead (its own
+count of work, ``max_deterministic_time``), and the output is the same on any machine and load.
+The best of the worst-fit and best-fit baselines that passes every check is the starting hint.
 """
 
 from __future__ import annotations
@@ -195,12 +197,14 @@ class _Model:
             if terms:
                 m.add(sum(w * v for w, v in terms) <= _scaled(capacity, self.memory_scale))
         crossing = []
+        self.y: list[tuple[int, int, Any]] = []
         if len(boards) > 1:
             for u, v, rate in p.traffic:
                 weight = _scaled(rate, self.traffic_scale)
                 if weight <= 0:
                     continue
                 y = m.new_bool_var(f"y{u}_{v}")
+                self.y.append((u, v, y))
                 for b in boards:
                     m.add(sum(on[u, b]) - sum(on[v, b]) <= y)
                 crossing.append((weight, y))
@@ -233,9 +237,16 @@ class _Model:
         return added
 
     def hint(self, assignment: Sequence[int]) -> None:
+        """Start from ``assignment``: every variable hinted, so that a binding that passes is
+        the first solution without search."""
         self.model.clear_hints()
         for (u, c), var in self.x.items():
             self.model.add_hint(var, assignment[u] == c)
+        if all(c >= 0 for c in assignment):
+            cores = self.problem.cores
+            for u, v, y in self.y:
+                self.model.add_hint(y, cores[assignment[u]].board != cores[assignment[v]].board)
+            self.model.add_hint(self.z, _stage_value(self, 0, assignment))
 
     def assignment(self, solver: Any) -> tuple[int, ...]:
         out = [-1] * len(self.problem.units)
@@ -283,10 +294,12 @@ def solve_deployment(
     keep: int = 1,
     seed: int = 0,
     hints: Sequence[Sequence[int]] = (),
+    deterministic: bool = False,
 ) -> SolverOutcome:
     """The ``keep`` best distinct bindings of ``problem`` under the lexicographic objectives
-    (see the module), within ``time_limit`` seconds of deterministic time in all. ``hints``:
-    bindings to start from (the first that passes every check is the incumbent)."""
+    (see the module), within ``time_limit`` seconds in all (wall clock, or CP-SAT's deterministic
+    time with ``deterministic``). ``hints``: bindings to start from (the first that passes every
+    check is the incumbent)."""
     from ortools.sat.python import cp_model
 
     start = time.perf_counter()
@@ -308,32 +321,33 @@ def solve_deployment(
     solves = cuts = 0
     proven_infeasible = False
     for _index in range(max(1, keep)):
+        began = time.perf_counter()
         state.build()
-        incumbent = None
-        for hint in hints:
-            if len(hint) == len(problem.units) and tuple(hint) not in state.excluded:
-                evaluation = problem.evaluate(hint)
-                if evaluation.feasible:
-                    incumbent = tuple(hint)
-                    break
+        incumbent = _best_hint(problem, hints, state.excluded)
         stages = [("max_core_load", state.z), ("bus_load", state.bus), ("moves", state.moves)]
         values: list[tuple[int, int, bool]] = []
-        used = 0.0
+        used = 0.0 if deterministic else time.perf_counter() - began
         for stage, (_name, expression) in enumerate(stages):
-            limit = budget * _STAGE_SHARE[stage]
+            limit = budget * _STAGE_SHARE[stage] if incumbent is not None else budget
             found = None
             while True:
                 state.model.minimize(expression)
-                if incumbent is not None:
-                    state.hint(incumbent)
+                if incumbent is not None or hints:
+                    state.hint(incumbent if incumbent is not None else hints[0])
                 solver = cp_model.CpSolver()
                 solver.parameters.num_workers = 1
+                # a light presolve: on thousands of variables, symmetry detection and probing
+                # take seconds of the time limit before the search starts
+                solver.parameters.symmetry_level = 0
+                solver.parameters.cp_model_probing_level = 0
                 solver.parameters.random_seed = seed
-                solver.parameters.max_deterministic_time = max(0.01, limit - used)
-                solver.parameters.max_time_in_seconds = max(0.02, 2 * (limit - used)) + 1.0
+                if deterministic:
+                    solver.parameters.max_deterministic_time = max(0.01, limit - used)
+                else:
+                    solver.parameters.max_time_in_seconds = max(0.01, limit - used)
                 status = solver.solve(state.model)
                 solves += 1
-                used += solver.deterministic_time
+                used = used + solver.deterministic_time if deterministic else time.perf_counter() - began
                 if status == cp_model.INFEASIBLE:
                     proven_infeasible = stage == 0 and incumbent is None
                     break
@@ -376,6 +390,22 @@ def solve_deployment(
     else:
         status = "infeasible" if proven_infeasible else "unknown"
     return SolverOutcome(status, tuple(bindings), load_scale, exact_load, seconds, cuts, solves)
+
+
+def _best_hint(
+    problem: DeploymentProblem, hints: Sequence[Sequence[int]], excluded: list[tuple[int, ...]]
+) -> tuple[int, ...] | None:
+    """The best of the hints that pass every check (highest load, bus, moves), None if none."""
+    best, key = None, None
+    for hint in hints:
+        if len(hint) != len(problem.units) or tuple(hint) in excluded:
+            continue
+        evaluation = problem.evaluate(hint)
+        if evaluation.feasible:
+            mine = (evaluation.max_load, evaluation.bus_kbyteps, evaluation.moves)
+            if key is None or mine < key:
+                best, key = tuple(hint), mine
+    return best
 
 
 def _stage_value(state: _Model, stage: int, assignment: Sequence[int]) -> int:
