@@ -420,7 +420,8 @@ def _search(run: DemoRun, state: dict[str, Any]) -> str:
         run.deployments.append(proposed)
         verdict = "passes" if proposed.verdict["binding_passes"] else "FAILS"
         parts.append(
-            f"{d.name} → {_rel(run, path)} ({proposal.search.method}, "
+            f"{d.name} → {_rel(run, path)} ({proposal.search.method}"
+            f"{' optimal' if proposal.search.optimal else ''}, "
             f"max core {_percent(float(proposal.search.max_load * 100))}), analysed: {verdict}"
         )
     for d in run.deployments:

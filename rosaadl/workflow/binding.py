@@ -4,9 +4,9 @@
 entry and the library, model to model. The workflow adds the rest: reading the bindings file
 (:func:`read_bindings`) and the library (:func:`bind_project`), writing a bound package as AADL
 (:func:`write_bound`), and searching a better binding of an overloaded deployment over the cores
-of its own robot (:func:`propose_binding`: :func:`rosaadl.analysis.deployment.search_deployment`,
-where a node's demand on a core is the execution time of its PDM for that core type), bound
-again with the cores found.
+of its own robot (:func:`propose_binding`: the constraint solver of
+:func:`rosaadl.analysis.deployment_proposal.propose_deployment`, where a node's demand on a core is
+the execution time of its PDM for that core type), bound again with the cores found.
 """
 
 from __future__ import annotations
@@ -21,7 +21,8 @@ from typing import Any
 from pyecore.ecore import EObject
 
 from rosaadl import model as _model
-from rosaadl.analysis.deployment import DeploymentResult, search_deployment
+from rosaadl.analysis.deployment import DeploymentResult
+from rosaadl.analysis.deployment_proposal import propose_deployment
 from rosaadl.analysis.instance_values import PropertyReader
 from rosaadl.arguments import checked, expect_path
 from rosaadl.errors import ParseError
@@ -191,13 +192,15 @@ def propose_binding(
     **search: Any,
 ) -> Proposal:
     """Search the cores of the deployment's robot for a binding of its nodes that passes the CPU
-    load and schedulability checks (:func:`~rosaadl.analysis.deployment.search_deployment`, with
-    each node's execution times on each core taken from its PDM for that core type), and bind
+    load and schedulability checks (the constraint solver,
+    :func:`~rosaadl.analysis.deployment_proposal.propose_deployment`, deterministic: the least
+    highest core load, then bus load, then moves; each node's execution times on each core taken
+    from its PDM for that core type), and bind
     the deployment to the cores found, in the package ``package_name`` (default
     ``<deployment>_proposed``).
 
     ``instance`` is the instance of ``bound`` (its model, which holds the library, is used to read
-    the other PDMs); ``search`` passes keyword arguments to the search.
+    the other PDMs); ``search`` passes keyword arguments to the solver (``time_limit``, ``keep``).
     """
     model = instance.eContainer()
     if not _model.is_a(model, "AadlModel"):
@@ -210,7 +213,14 @@ def propose_binding(
         f"{root}.{process}": {f"{root}.{ROBOT}.{core}": cets for core, cets in per_core.items()}
         for process, per_core in times.items()
     }
-    result = search_deployment(instance, processes, processors, execution_times=given_times, **search)
+    solved = propose_deployment(
+        instance,
+        processes=processes,
+        processors=processors,
+        execution_times=given_times,
+        **{"deterministic": True, **search},
+    )
+    result = solved.as_result()
     prefix = f"{root}.{ROBOT}."
     demands = _demands(instance, times)
     if not result.feasible:

@@ -212,7 +212,7 @@ def test_search_uses_each_nodes_measurements_for_each_core_type(proposal) -> Non
 
 
 def test_proposed_binding_passes_with_the_tracker_on_a_big_core(proposal, tmp_path) -> None:
-    assert proposal.feasible and proposal.search.method == "exact"
+    assert proposal.feasible and proposal.search.method == "cp-sat" and proposal.search.optimal
     assert proposal.search.max_load == Fraction(74, 100)
     assert "big_procs_cluster" in proposal.cores["tracker_node"]
     assert len(set(proposal.cores.values())) == 3
