@@ -19,7 +19,8 @@ model accepts is then checked exactly, with the same functions the analyses use.
 returns is checked core by core (:meth:`DeploymentProblem.schedulable`, the response-time test
 where the core has priorities), as are the exact loads, memory and bus; a core that fails gets a
 cut "not all of these units together on this core" (on every identical core too: adding tasks
-never makes a core schedulable), and the stage is solved again, until the binding passes.
+never makes a core schedulable), the set first shrunk to one from which no unit can be dropped,
+and the stage is solved again, until the binding passes.
 
 **Determinism.** One search worker and a fixed seed: CP-SAT with several workers is not
 deterministic across runs (the workers race), so one is used. A stage that ends by proving its
@@ -282,9 +283,25 @@ def _cuts_for(problem: DeploymentProblem, assignment: Sequence[int], evaluation:
     (core, members) for a core over 100 % or not schedulable, else the whole binding."""
     out = []
     for c, members in enumerate(problem.members(assignment)):
-        if members and (evaluation.loads[c] > 1 or not problem.schedulable(c, members)):
+        if members and evaluation.loads[c] > 1:
             out.append((c, members))
+        elif members and not problem.schedulable(c, members):
+            out.append((c, _minimal_unschedulable(problem, c, members)))
     return out
+
+
+def _minimal_unschedulable(
+    problem: DeploymentProblem, core: int, members: tuple[int, ...]
+) -> tuple[int, ...]:
+    """A subset of ``members`` still not schedulable on ``core`` from which no unit can be
+    dropped (deletion filter, lightest units tried first): the smaller the set, the more bindings
+    one cut rules out."""
+    kept = list(members)
+    for unit in sorted(members, key=lambda u: (problem.load[u][core] or 0, u)):
+        trial = tuple(u for u in kept if u != unit)
+        if trial and not problem.schedulable(core, trial):
+            kept = list(trial)
+    return tuple(kept)
 
 
 def solve_deployment(
