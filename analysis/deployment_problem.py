@@ -51,6 +51,7 @@ __all__ = [
 ]
 
 _US = 1_000_000
+_LN2_BELOW = 0.6931  #: below ln 2 = 0.693147..., with room for the rounding of the float sums
 
 
 @dataclass
@@ -136,6 +137,7 @@ class DeploymentProblem:
             ]
             for i, u in enumerate(self.units)
         ]
+        self._float_load = [[float(x) if x is not None else 0.0 for x in row] for row in self.load]
         self._sched_cache: dict[tuple[int, tuple[int, ...]], bool] = {}
         self._tasks: dict[tuple[int, int], list[Task]] = {}
         self.sched_calls = 0
@@ -200,13 +202,21 @@ class DeploymentProblem:
         utilisation test when it accepts a preemptive core, else the full feasibility tests."""
         if not self.check_schedulability or not members:
             return True
+        core = self.cores[core_index]
+        # the load bounds the tasks' utilisation from above; at most ln 2 (below Liu and
+        # Layland's bound for any number of tasks) the utilisation test accepts, as below
+        if (
+            core.preemptive
+            and core.scheduler is Scheduler.RATE_MONOTONIC
+            and sum(self._float_load[u][core_index] for u in members) <= _LN2_BELOW
+        ):
+            return True
         key = (core_index, members)
         cached = self._sched_cache.get(key)
         if cached is not None:
             return cached
         from rosaadl.analysis.schedulability import analyze_schedulability, utilization_test
 
-        core = self.cores[core_index]
         tasks = [t for index in members for t in self.tasks(index, core_index)]
         verdict = True
         if tasks and not (core.preemptive and utilization_test(core.scheduler, True, tasks) is True):

@@ -54,7 +54,7 @@ __all__ = [
 
 RESOLUTION = 10**6  #: the scale of a core's capacity when the exact one is larger than EXACT_LIMIT
 EXACT_LIMIT = 10**9
-_STAGE_SHARE = (0.6, 0.8, 1.0)  #: stage k may use the time up to this share of the binding's budget
+_STAGE_SHARE = (0.8, 0.9, 1.0)  #: stage k may use the time up to this share of the binding's budget
 LATENCY_NOTE = "not computed: rosaadl has no executor analysis yet"
 
 
@@ -173,21 +173,22 @@ class _Model:
                 row.append(var)
                 self.core_terms[c].append((_scaled(load, self.load_scale), var))
             m.add_exactly_one(row)
+        weighted = cp_model.LinearExpr.weighted_sum
         top = 0
+        sums = []
         for terms in self.core_terms:
             if terms:
-                m.add(sum(w * v for w, v in terms) <= self.load_scale)
+                expression = weighted([v for _w, v in terms], [w for w, _v in terms])
+                m.add(expression <= self.load_scale)
+                sums.append(expression)
                 top = max(top, min(self.load_scale, sum(w for w, _ in terms)))
         self.z = m.new_int_var(0, top, "max_load")
-        for terms in self.core_terms:
-            if terms:
-                m.add(sum(w * v for w, v in terms) <= self.z)
+        for expression in sums:
+            m.add(expression <= self.z)
         boards = p.boards()
-        on = {
-            (u, b): [self.x[u, c] for c in range(len(p.cores)) if p.cores[c].board == b and (u, c) in self.x]
-            for u in range(len(p.units))
-            for b in boards
-        }
+        on: dict[tuple[int, str], list[Any]] = {}
+        for (u, c), var in self.x.items():
+            on.setdefault((u, p.cores[c].board), []).append(var)
         for b, capacity in p.board_memory.items():
             terms = [
                 (_scaled(p.units[u].memory_kbyte, self.memory_scale), var)
@@ -196,7 +197,8 @@ class _Model:
             ]
             terms = [(w, v) for w, v in terms if w > 0]
             if terms:
-                m.add(sum(w * v for w, v in terms) <= _scaled(capacity, self.memory_scale))
+                total = weighted([v for _w, v in terms], [w for w, _v in terms])
+                m.add(total <= _scaled(capacity, self.memory_scale))
         crossing = []
         self.y: list[tuple[int, int, Any]] = []
         if len(boards) > 1:
@@ -207,9 +209,11 @@ class _Model:
                 y = m.new_bool_var(f"y{u}_{v}")
                 self.y.append((u, v, y))
                 for b in boards:
-                    m.add(sum(on[u, b]) - sum(on[v, b]) <= y)
+                    m.add(sum(on.get((u, b), [])) - sum(on.get((v, b), [])) <= y)
                 crossing.append((weight, y))
-        self.bus = sum(w * y for w, y in crossing) if crossing else m.new_constant(0)
+        self.bus = (
+            weighted([y for _w, y in crossing], [w for w, _y in crossing]) if crossing else m.new_constant(0)
+        )
         if p.bus_capacity is not None and crossing:
             m.add(self.bus <= _scaled(p.bus_capacity, self.traffic_scale))
         moved = []
@@ -347,16 +351,18 @@ def solve_deployment(
         for stage, (_name, expression) in enumerate(stages):
             limit = budget * _STAGE_SHARE[stage] if incumbent is not None else budget
             found = None
+            unproven_bound = -1.0
             while True:
                 state.model.minimize(expression)
                 if incumbent is not None or hints:
                     state.hint(incumbent if incumbent is not None else hints[0])
                 solver = cp_model.CpSolver()
                 solver.parameters.num_workers = 1
-                # a light presolve: on thousands of variables, symmetry detection and probing
-                # take seconds of the time limit before the search starts
+                # a light presolve: on thousands of variables, symmetry detection, probing and
+                # repeated presolve take seconds of the time limit before the search starts
                 solver.parameters.symmetry_level = 0
                 solver.parameters.cp_model_probing_level = 0
+                solver.parameters.max_presolve_iterations = 1
                 solver.parameters.random_seed = seed
                 if deterministic:
                     solver.parameters.max_deterministic_time = max(0.01, limit - used)
@@ -369,6 +375,8 @@ def solve_deployment(
                     proven_infeasible = stage == 0 and incumbent is None
                     break
                 if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+                    # no solution in time: the bound the search reached still holds
+                    unproven_bound = solver.best_objective_bound
                     break
                 assignment = state.assignment(solver)
                 evaluation = problem.evaluate(assignment)
@@ -390,7 +398,7 @@ def solve_deployment(
                 if incumbent is None:
                     break
                 # the time ran out (or cuts closed the stage): the incumbent stays, without a bound
-                values.append((-1, -1, False))
+                values.append((-1, math.floor(unproven_bound + 1e-9) if unproven_bound >= 0 else -1, False))
             else:
                 incumbent = found[0]
                 values.append((round(found[1]), math.floor(found[2] + 1e-9), found[3] == cp_model.OPTIMAL))
