@@ -44,8 +44,6 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-_US = 1_000_000
-
 
 def _num(value: Fraction | None) -> float | int | None:
     if value is None:
