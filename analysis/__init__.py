@@ -13,7 +13,13 @@
 * :mod:`~rosaadl.analysis.simulation`: event-driven scheduling simulation (its engine in
   :mod:`~rosaadl.analysis.simulation_engine`);
 * :mod:`~rosaadl.analysis.latency`: end-to-end latency of thread chains;
-* :mod:`~rosaadl.analysis.deployment`: deployment search (bindings of processes to cores);
+* :mod:`~rosaadl.analysis.deployment`: deployment search (bindings of processes to cores; the
+  exact branch and bound); the constraint solver behind ``rosaadl deploy`` beside it, imported
+  on use: :mod:`~rosaadl.analysis.deployment_problem` (units, cores, boards, loads, memory,
+  traffic), :mod:`~rosaadl.analysis.deployment_solver` (the CP-SAT model),
+  :mod:`~rosaadl.analysis.deployment_baselines` (first/best/worst-fit decreasing),
+  :mod:`~rosaadl.analysis.deployment_infeasibility` (why no binding exists) and
+  :mod:`~rosaadl.analysis.deployment_proposal` (all of them together);
 * :mod:`~rosaadl.analysis.registry`: the analyses by name; each module above that is an analysis
   registers itself there with its runner, JSON key and text/CSV renderings
   (:mod:`~rosaadl.analysis.rendering`);
