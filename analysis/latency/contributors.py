@@ -405,10 +405,11 @@ class FlowWalk:
         row = Contributor(component, contributor_label(component, "component"), "queuing")
         category = str(getattr(getattr(incoming, "category", None), "name", ""))
         dispatch = self.dispatch(component)
-        if self.assigned(incoming, "Communication_Properties::Queue_Size"):
-            size = self.reader.number(
-                incoming, "Communication_Properties::Queue_Size", None, self.mode
-            ) or Fraction(0)
+        queue_size = self.reader.number(incoming, "Communication_Properties::Queue_Size", None, self.mode)
+        if queue_size is not None and queue_size != 1:
+            # OSATE counts an assigned Queue_Size only; our instances keep default values, so the
+            # predeclared default (1) reads as unassigned
+            size = queue_size
         elif (
             category == "dataPort"
             and category_of(component) in ("thread", "device", "abstract")

@@ -345,7 +345,9 @@ def _entry(
         expected_best = low * _US if low is not None else Fraction(0)
         expected_worst = high * _US if high is not None else Fraction(0)
     issues = (
-        summary(best, worst, spec_best, spec_worst, expected_best, expected_worst) if flow is not None else []
+        summary((best, worst), (spec_best, spec_worst), (expected_best, expected_worst))
+        if flow is not None
+        else []
     )
     path = instance_path(flow) if flow is not None else _threads(elements)[0] if _threads(elements) else ""
     chain = LatencyChain(
