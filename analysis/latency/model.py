@@ -226,6 +226,7 @@ class LatencyHop:
             "worst_us": number(self.worst_us),
             "best_method": self.best_method,
             "worst_method": self.worst_method,
+            "depth": self.depth,
             "note": self.note,
         }
 
