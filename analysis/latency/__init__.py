@@ -27,6 +27,7 @@ from rosaadl.analysis.latency.model import (
 )
 from rosaadl.analysis.latency.report import latency_csv, latency_text, osate_latency_csv
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
+from rosaadl.errors import ModelError, UsageError
 
 __all__ = [
     "Contributor",
@@ -35,11 +36,20 @@ __all__ = [
     "LatencyPreferences",
     "LatencyResult",
     "analyze_latency",
+    "latency_preferences",
     "latency_csv",
     "latency_text",
     "osate_latency_csv",
     "thread_chains",
 ]
+
+
+def latency_preferences(code: str) -> LatencyPreferences:
+    """The preferences an ``AS-MF-ET-EQ`` code names (a :class:`UsageError` for another form)."""
+    try:
+        return LatencyPreferences.from_code(code)[0]
+    except ModelError as exc:
+        raise UsageError(exc.message) from None
 
 
 def _run(context: AnalysisContext) -> LatencyResult:

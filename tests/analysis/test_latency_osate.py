@@ -189,3 +189,42 @@ def test_the_2018_summary_has_osate_s_words(corpus):
     start = lines.index("End to end Latency Summary")
     expected = [tuple(line.split(",", 1)) for line in lines[start + 1 :] if line]
     assert list(chain.issues) == expected
+
+
+def test_analyze_writes_osate_s_report_that_diffs_with_osate_s(corpus, tmp_path, capsys):
+    """``analyze --only latency -o DIR``: our table and OSATE's report per system kind, whose
+    rows and totals are those of the OSATE report of the same preferences (today's rules)."""
+    from rosaadl.cli import main
+
+    (report,) = [p for f, p in _cases() if f == "ex-pullprotocols"]
+    (aaxl2,) = report.parent.parent.parent.glob("*.aaxl2")
+    out = tmp_path / "out"
+    code = main(
+        ["analyze", str(aaxl2), "--only", "latency", "-o", str(out), "--latency-preferences", "AS-MF-ET-EQ"]
+    )
+    assert code == 1  # 300 ms over a 10 ms Latency
+    names = sorted(p.name for p in out.iterdir())
+    assert names == [
+        "stub_i_Instance__Latency.csv",
+        "stub_i_Instance__latency_AS-MF-ET-EQ.csv",
+        "stub_i_Instance__latency_SS-MF-ET-EQ.csv",
+    ]
+    ours = parse_report(out / "stub_i_Instance__latency_AS-MF-ET-EQ.csv", "async")
+    theirs = parse_report(report, "async")
+    assert [s.flow for s in ours] == [s.flow for s in theirs] == ["prot.XferOnly"]
+    assert ours[0].total == theirs[0].total and ours[0].expected == theirs[0].expected
+    # today's word for a row that adds nothing is "no sampling/queuing latency" (2016: "no latency")
+    same = [(w, lo, hi) for w, _, lo, _, hi, _ in ours[0].rows]
+    assert same == [(w, lo, hi) for w, _, lo, _, hi, _ in theirs[0].rows]
+    assert (
+        "ERROR,Maximum actual latency total 300.0ms exceeds expected maximum end to end latency 10.0ms"
+        in (out / "stub_i_Instance__latency_AS-MF-ET-EQ.csv").read_text(encoding="utf-8")
+    )
+    capsys.readouterr()
+
+
+def test_bad_latency_preferences_are_a_usage_error(capsys):
+    from rosaadl.cli import main
+
+    assert main(["analyze", "nowhere.aadl", "--latency-preferences", "AS-XX-ET-EQ"]) == 2
+    assert "latency preferences" in capsys.readouterr().err
