@@ -192,18 +192,13 @@ class FlowWalk:
             if not isinstance(window, dict) or window.get("Partition") is None:
                 continue
             target = window.get("Partition")
-            resolved = (
-                self.reader.resolve_reference(module, target)
-                if hasattr(self.reader, "resolve_reference")
-                else target
-            )
             duration = window.get("Duration")
             seconds = (
                 self.reader.convert(module, "Module_Schedule", duration, "sec")
                 if duration is not None
                 else None
             )
-            out.append((resolved, (seconds or Fraction(0)) * _US))
+            out.append((target, (seconds or Fraction(0)) * _US))
         return out
 
     def partition_row(self, partition: Any, element: Any, start: bool) -> Contributor:
