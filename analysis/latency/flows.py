@@ -214,7 +214,9 @@ def _specs(
             elements = flatten_flow(item)
             if not elements:
                 continue
-            specs.append((item.flow or item.name or instance_path(item), item, elements))
+            # OSATE's name for a flow: its path below the root (``Sampled.signal``)
+            name = instance_path(item).partition(".")[2] or item.flow or item.name
+            specs.append((name, item, elements))
             continue
         threads = []
         for element in item:
