@@ -168,8 +168,6 @@ class Contributor:
     timing: str = ""  #: connections: sampled, immediate or delayed
     comments: list[str] = field(default_factory=list)
     subs: list[Contributor] = field(default_factory=list)
-    #: what the totals added for this row (sampling rows), per min/max
-    added: dict[bool, Fraction] = field(default_factory=dict)
 
     def total(self, worst: bool) -> Fraction:
         own = self.worst if worst else self.best

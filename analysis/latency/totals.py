@@ -99,8 +99,7 @@ class _Walk:
         return (self.sync and conn.sync == "unknown") or conn.sync == "synchronous"
 
     def set(self, row: Contributor, worst: bool, value: Fraction) -> Fraction:
-        row.added[worst] = value
-        if not self.legacy:
+        if not self.legacy:  # the 2014 rows keep showing their period
             if worst:
                 row.worst = value
             else:
@@ -218,8 +217,8 @@ class _Walk:
 def actual_latency(
     rows: list[Contributor], synchronous: bool, major_frame: bool, revision: str
 ) -> tuple[Fraction, Fraction]:
-    """(best, worst) end-to-end latency of ``rows``, in one system mode; the sampling rows keep
-    what they added (:attr:`Contributor.added`)."""
+    """(best, worst) end-to-end latency of ``rows``, in one system kind; today's sampling rows
+    then show what they added."""
     best = _Walk(rows, synchronous, major_frame, revision).total(False)
     worst = _Walk(rows, synchronous, major_frame, revision).total(True)
     return best, worst
