@@ -14,7 +14,7 @@ from rosaadl.analysis.instance_values import SystemMode, category_of, instance_r
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.model import component_instances, instance_path
 
-__all__ = ["thread_chains", "chain_elements", "thread_links", "thread_of"]
+__all__ = ["thread_chains", "chain_elements", "refine_by_threads", "thread_links", "thread_of"]
 
 
 def thread_of(end: Any) -> Any | None:
@@ -99,3 +99,62 @@ def chain_elements(root: Any, threads: list[Any], diagnostics: list[Diagnostic])
             elements.append(conn)
         elements.append(dst)
     return elements
+
+
+def refine_by_threads(root: Any, elements: list[Any], reader: Any) -> tuple[list[Any], bool]:
+    """A flow whose elements are flow specifications of node processes without a flow
+    implementation, refined by the threads its connections reach (rosaadl's rule for ROS models,
+    whose topics are port connections between the threads of the nodes): such a flow
+    specification, when it has no ``Latency`` of its own, becomes the thread its incoming
+    connection ends in, then the thread its outgoing connection starts from (with the port
+    connection between the two when there is one). OSATE would count such a process as adding no
+    latency. Whether anything was refined comes second."""
+    from rosaadl.analysis.latency.contributors import component_of, is_connection
+
+    links = thread_links(root, system_modes(root)[0])
+    out: list[Any] = []
+    refined = False
+    for index, element in enumerate(elements):
+        component = (
+            None
+            if is_connection(element) or hasattr(element, "componentInstances")
+            else component_of(element)
+        )
+        if component is None or category_of(component) in ("thread", "device", "abstract"):
+            out.append(element)
+            continue
+        if reader.value(element, "Communication_Properties::Latency") is not None:
+            out.append(element)
+            continue
+        before = elements[index - 1] if index > 0 and is_connection(elements[index - 1]) else None
+        after = (
+            elements[index + 1] if index + 1 < len(elements) and is_connection(elements[index + 1]) else None
+        )
+        inner = [
+            t
+            for t in (
+                thread_of(before.destination) if before else None,
+                thread_of(after.source) if after else None,
+            )
+            if t is not None and _inside(t, component)
+        ]
+        if not inner:
+            out.append(element)
+            continue
+        refined = True
+        out.append(inner[0])
+        if len(inner) == 2 and inner[1] is not inner[0]:
+            conn = next((c for a, c, b in links if a is inner[0] and b is inner[1]), None)
+            if conn is not None:
+                out.append(conn)
+            out.append(inner[1])
+    return out, refined
+
+
+def _inside(obj: Any, container: Any) -> bool:
+    current = obj
+    while current is not None:
+        if current is container:
+            return True
+        current = current.eContainer()
+    return False

@@ -311,6 +311,12 @@ class FlowWalk:
                         if self.legacy and row.kind == "sampling":
                             row.best = row.worst = row.period
                         rows.append(row)
+            elif index > 0 and not is_connection(elements[index - 1]) and rows:
+                # two threads of one node in a refined flow (no connection between them): the
+                # later one samples what the earlier one left (rosaadl; OSATE's flows alternate)
+                row = Contributor(component, label, "sampling", period=period)
+                row.best_method = row.worst_method = "sampled"
+                rows.append(row)
             else:
                 row = Contributor(component, label, "sampling", period=period)
                 row.best_method = row.worst_method = "first"

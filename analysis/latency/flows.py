@@ -23,7 +23,7 @@ from rosaadl.analysis.instance_values import (
     instance_root,
     system_modes,
 )
-from rosaadl.analysis.latency.chains import chain_elements, thread_chains
+from rosaadl.analysis.latency.chains import chain_elements, refine_by_threads, thread_chains
 from rosaadl.analysis.latency.contributors import FlowWalk, flatten_flow, is_connection
 from rosaadl.analysis.latency.model import (
     Contributor,
@@ -197,9 +197,11 @@ def _threads(elements: list[Any]) -> tuple[str, ...]:
 
 
 def _specs(
-    root: Any, chains: Iterable[Any] | None, limit: int, diagnostics: list[Diagnostic]
+    root: Any, chains: Iterable[Any] | None, limit: int, reader: PropertyReader
 ) -> tuple[list[tuple[str, Any, list[Any]]], bool]:
-    """(name, flow or None, elements) of what to analyse, and whether they are topic chains."""
+    """(name, flow or None, elements) of what to analyse, and whether they are topic chains (or
+    flows refined by the threads of their topics)."""
+    diagnostics = reader.diagnostics
     specs: list[tuple[str, Any, list[Any]]] = []
     derived = False
     if chains is None:
@@ -211,9 +213,10 @@ def _specs(
             derived = True
     for item in chains:
         if hasattr(item, "flowElements"):
-            elements = flatten_flow(item)
+            elements, refined = refine_by_threads(root, flatten_flow(item), reader)
             if not elements:
                 continue
+            derived = derived or refined
             # OSATE's name for a flow: its path below the root (``Sampled.signal``)
             name = instance_path(item).partition(".")[2] or item.flow or item.name
             specs.append((name, item, elements))
@@ -287,7 +290,7 @@ def analyze_latency(
     root = instance_root(source)
     diagnostics: list[Diagnostic] = []
     reader = PropertyReader(diagnostics)
-    specs, derived = _specs(root, chains, limit, diagnostics)
+    specs, derived = _specs(root, chains, limit, reader)
     response_times = _wcrt_map(root, schedulability) if derived and specs else {}
     results: list[LatencyChain] = []
     soms = system_modes(root)

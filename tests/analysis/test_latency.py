@@ -218,3 +218,23 @@ def test_missing_period_and_cet_are_diagnosed_not_fatal():
     found = {(d.severity, d.location.path) for d in result.diagnostics}
     assert ("error", "app_i_Instance.n2.cmd") in found and ("warning", "app_i_Instance.n2.cmd") in found
     assert result.chains[0].worst_us > 0
+
+
+def test_flow_through_node_processes_is_refined_by_their_threads():
+    """A ROS end-to-end flow named at the node (process) level, whose flow specifications have no
+    implementation nor Latency, is walked through the threads its topics reach, with their
+    response times (OSATE would count the processes as adding nothing)."""
+    root = pipeline()
+    n1, n2 = root.componentInstances[4], root.componentInstances[5]
+    out_spec = new("FlowSpecificationInstance", name="f_out", kind="source")
+    in_spec = new("FlowSpecificationInstance", name="f_in", kind="sink")
+    n1.flowSpecifications.append(out_spec)
+    n2.flowSpecifications.append(in_spec)
+    flow = new("EndToEndFlowInstance", name="nodes", flow="nodes")
+    flow.flowElements.extend([out_spec, root.connectionInstances[1], in_spec])
+    root.endToEndFlows.append(flow)
+    (chain,) = async_chains(analyze_latency(root))
+    assert chain.threads == ("app_i_Instance.n1.trk", "app_i_Instance.n2.cmd")
+    transmission = Fraction(1020, 12_500_000) * 1_000_000
+    assert chain.worst_us == 12000 + transmission + 700  # trk's WCRT, the bus, cmd's CET
+    assert hop(chain, "processing", "trk").worst_method == "response time"
