@@ -140,16 +140,20 @@ def _same_name(theirs: str, ours: str) -> bool:
     ("folder", "report"), _cases() or [("-", Path("-"))], ids=lambda v: getattr(v, "name", v)
 )
 def test_osate_latency_reports_are_reproduced(corpus, folder, report):
+    prefs, sections = _expected(folder, report)
+    _compare(analyze_latency(_instance(report), preferences=prefs), sections, report)
+
+
+def _expected(folder: str, report: Path) -> tuple[LatencyPreferences, list[Section]]:
+    """The preferences and rules a report was written with, and its sections."""
     if folder == "-":
         pytest.skip("no OSATE latency report in the corpus")
     default_code, revision = REPORTS[folder]
     code = re.search(r"_(\w\w-\w\w-\w\w-\w\w)\.csv$", report.name)
-    code_text = code.group(1) if code else default_code
-    prefs, synchronous = LatencyPreferences.from_code(code_text, revision)
+    prefs, synchronous = LatencyPreferences.from_code(code.group(1) if code else default_code, revision)
     sections = parse_report(report, "sync" if synchronous else "async")
     assert sections, f"no flow in {report.name}"
-    result = analyze_latency(_instance(report), preferences=prefs)
-    _compare(result, sections, report)
+    return prefs, sections
 
 
 #: (corpus folder, root implementation) of the models behind the reports, read from their .aadl
@@ -169,15 +173,10 @@ SOURCES = {
 )
 def test_osate_latency_reports_from_the_aadl_sources(corpus, folder, report):
     """The same reports from the models' ``.aadl`` sources, read and instantiated by rosaadl."""
-    if folder == "-":
-        pytest.skip("no OSATE latency report in the corpus")
     from rosaadl.importers.aadl_text import read_files
     from rosaadl.transforms.instantiate import instantiate
 
-    default_code, revision = REPORTS[folder]
-    code = re.search(r"_(\w\w-\w\w-\w\w-\w\w)\.csv$", report.name)
-    prefs, synchronous = LatencyPreferences.from_code(code.group(1) if code else default_code, revision)
-    sections = parse_report(report, "sync" if synchronous else "async")
+    prefs, sections = _expected(folder, report)
     workspace = read_files(sorted((corpus / "osate" / "aaxl2" / folder).rglob("*.aadl")))
     _compare(analyze_latency(instantiate(workspace, SOURCES[folder]), preferences=prefs), sections, report)
 
