@@ -229,6 +229,7 @@ def run_analyses(
     latency_chains: Iterable[Any] | None = None,
     deployment: dict[str, Any] | None = None,
     simulation_horizon: Any = None,
+    latency_preferences: Any = None,
 ) -> AnalysisReport:
     """Run the selected analyses (default: every registered analysis that runs by default) on an
     instance, in report order.
@@ -236,7 +237,8 @@ def run_analyses(
     An analysis that cannot run on the model (a :class:`~rosaadl.errors.RosaadlError`) becomes an
     error of the report; the others still run. ``deployment`` passes keyword arguments to
     :func:`~rosaadl.analysis.deployment.search_deployment`, ``latency_chains`` the chains to
-    :func:`~rosaadl.analysis.latency.analyze_latency`, ``simulation_horizon`` the horizon to
+    :func:`~rosaadl.analysis.latency.analyze_latency` (and ``latency_preferences``, OSATE's
+    preferences), ``simulation_horizon`` the horizon to
     :func:`~rosaadl.analysis.simulation.simulate`.
     """
     from rosaadl.analysis.instance_values import instance_root
@@ -247,6 +249,7 @@ def run_analyses(
         root,
         {
             "latency_chains": latency_chains,
+            "latency_preferences": latency_preferences,
             "deployment": deployment,
             "simulation_horizon": simulation_horizon,
         },

@@ -30,6 +30,7 @@ from markupsafe import Markup, escape
 
 from rosaadl.errors import ExportError
 from rosaadl.exporters.report import svg as charts
+from rosaadl.exporters.report.latency_chart import latency_chart
 from rosaadl.exporters.report.view import build_view, short_path
 
 __all__ = ["REPORT_HTML", "REPORT_JSON", "render_report", "write_report"]
@@ -380,7 +381,8 @@ def _tables(view: dict[str, Any], report: Any) -> list[dict[str, Any]]:
         for chain in report.latency.chains:
             rows.append(
                 _group(
-                    f"{chain.name}: best {_cell(chain.best_us)} us, worst {_cell(chain.worst_us)} us"
+                    f"{chain.name} ({chain.mode}): best {_cell(chain.best_us)} us, "
+                    f"worst {_cell(chain.worst_us)} us"
                     + (f", expected {_cell(chain.expected_us)} us" if chain.expected_us is not None else "")
                 )
             )
@@ -428,6 +430,7 @@ def render_report(
         "cpu": charts.cpu_chart(view["cpu"]),
         "bus": charts.bus_chart(view["bus"]),
         "gantt": charts.gantt_chart(view["schedule"]),
+        "latency": latency_chart((view["analyses"].get("latency") or {}).get("chains") or []),
     }
     template = _environment().get_template("report.html.j2")
     html = template.render(

@@ -52,6 +52,14 @@ class _AnalysesOption(click.Option):
     type=click.Path(path_type=Path),
     help="Folder for the HTML report (report.html with plots, and report.json).",
 )
+@click.option(
+    "--latency-preferences",
+    "latency_code",
+    default="AS-MF-ET-EQ",
+    show_default=True,
+    metavar="XX-MF|PE-ET|DL-EQ|FQ",
+    help="OSATE's latency preferences (the system kind pair is ignored: both are reported).",
+)
 @pass_options
 def command(
     options: Options,
@@ -62,16 +70,19 @@ def command(
     time_unit: str,
     lenient: bool,
     html_dir: Path | None,
+    latency_code: str,
 ) -> None:
     """Analyse a deployment; exit 1 when an analysis finds an overload or a missed deadline.
     Inputs may be AADL text, a rosaadl model, an OSATE .aaxl2 or a Cheddar file."""
+    from rosaadl.analysis.latency import latency_preferences
     from rosaadl.analysis.report import parse_only, run_analyses
 
     selected = parse_only(only)  # a bad --only is a usage error before any reading
+    preferences = latency_preferences(latency_code)
     loaded = read_aadl_inputs(list(inputs), time_unit=time_unit, lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient)
     options.progress(f"analysing {instance.name}: {', '.join(selected)}")
-    report = run_analyses(instance, selected)
+    report = run_analyses(instance, selected, latency_preferences=preferences)
     written = report.write_csv(out) if out is not None else []
     pages = []
     if html_dir is not None:

@@ -83,25 +83,55 @@ def pipeline(bound=True, rta=True):
     return root
 
 
+def async_chains(result):
+    return [c for c in result.chains if c.mode == "async"]
+
+
+def hop(chain, kind, name):
+    return next(h for h in chain.hops if h.kind == kind and h.path.rpartition(".")[2] == name)
+
+
 def test_chain_found_and_summed():
     root = pipeline()
     result = analyze_latency(root)
-    (chain,) = result.chains
+    (chain,) = async_chains(result)
+    assert [c.mode for c in result.chains] == ["async", "sync"]
     assert chain.threads == ("app_i_Instance.n1.cam", "app_i_Instance.n1.trk", "app_i_Instance.n2.cmd")
-    kinds = [(h.kind, h.path.rpartition(".")[2]) for h in chain.hops]
+    kinds = [(h.kind, h.label, h.worst_method) for h in chain.hops]
     assert kinds == [
-        ("response", "cam"),
-        ("response", "trk"),  # sporadic: dispatched by the arrival, no sampling delay
-        ("transmission", "net"),
-        ("sampling", "cmd"),
-        ("response", "cmd"),
+        ("sampling", "thread n1.cam", "first sampling"),  # OSATE does not add the initial delay
+        ("processing", "thread n1.cam", "response time"),
+        ("connection", "connection n1.cam.o -> n1.trk.i", "no sampling/queuing latency"),
+        ("processing", "thread n1.trk", "response time"),  # sporadic: no sampling delay
+        ("transmission", "bus net", "transmission time"),
+        # the virtual bus and the bus are not periodic: the connection may wait for the others
+        ("queuing", "protocol ros", "queued"),
+        ("sampling", "protocol ros", "sampling protocol/bus"),
+        ("queuing", "bus net", "queued"),
+        ("sampling", "bus net", "sampling protocol/bus"),
+        ("connection", "connection n1.trk.o -> n2.cmd.i", "no sampling/queuing latency"),
+        # an event data port is queued, not sampled (OSATE); without a Queue_Size, no delay
+        ("processing", "thread n2.cmd", "response time"),
     ]
-    # response: best = min CET, worst = WCRT (cam 2000; trk 10000 + one cam job = 12000; cmd 700)
-    # transmission: (1000 + 20 bytes) / 12 500 KB/s = 81.6 us; sampling of cmd: 0 .. 100 000 us
+    # processing: best = min CET, worst = WCRT (cam 2000; trk 10000 + one cam job = 12000; cmd 700)
+    # transmission: (1000 + 20 bytes) / 12 500 KB/s = 81.6 us
     transmission = Fraction(1020, 12_500_000) * 1_000_000
-    assert chain.best_us == 1000 + 5000 + transmission + 0 + 700
-    assert chain.worst_us == 2000 + 12000 + transmission + 100_000 + 700
+    assert chain.best_us == 1000 + 5000 + transmission + 700
+    assert chain.worst_us == 2000 + 12000 + transmission + 700
     assert chain.met is None and result.ok
+
+
+def test_queue_size_of_a_periodic_reader_waits_its_periods():
+    """OSATE: an event data port with an assigned Queue_Size waits Queue_Size periods at worst
+    for a periodic or sporadic reader, nothing at best with an empty queue (EQ)."""
+    root = pipeline()
+    cmd = root.componentInstances[5].componentInstances[0]
+    cmd.featureInstances[0].ownedPropertyAssociations.append(
+        pa("Communication_Properties::Queue_Size", new("IntegerValue", value=2))
+    )
+    (chain,) = async_chains(analyze_latency(root))
+    queued = hop(chain, "queuing", "cmd")
+    assert (queued.best_us, queued.worst_us, queued.worst_method) == (0, 200_000, "queued")
 
 
 def test_worst_case_uses_the_given_schedulability():
@@ -110,12 +140,13 @@ def test_worst_case_uses_the_given_schedulability():
     wcrt = {t.path: t.wcrt for d in sched.domains for t in d.tasks}
     assert wcrt["app_i_Instance.n1.trk"] == 12000
     chain = analyze_latency(root, schedulability=sched).chains[0]
-    assert chain.hops[1].worst_us == 12000
+    assert hop(chain, "processing", "trk").worst_us == 12000
 
 
 def test_without_a_scheduling_domain_the_cet_counts():
     chain = analyze_latency(pipeline(rta=False)).chains[0]
-    assert chain.hops[1].worst_us == 10000 and "no WCRT" in chain.hops[1].note
+    trk = hop(chain, "processing", "trk")
+    assert trk.worst_us == 10000 and trk.worst_method == "processing time"
 
 
 def test_unbound_connection_transmits_in_no_time():
@@ -126,19 +157,21 @@ def test_unbound_connection_transmits_in_no_time():
 def test_explicit_chain_and_flow_with_expected_latency():
     root = pipeline()
     result = analyze_latency(root, [["n1.cam", "n1.trk"]])
-    (chain,) = result.chains
+    (chain,) = async_chains(result)
     assert chain.name == "n1.cam -> n1.trk" and chain.worst_us == 2000 + 12000
     flow = new("EndToEndFlowInstance", name="track", flow="track")
     conn = root.connectionInstances[1]
     flow.flowElements.extend(
         [root.componentInstances[4].componentInstances[1], conn, root.componentInstances[5]]
     )
-    flow.ownedPropertyAssociations.append(pa("Communication_Properties::Latency", span(0, 50, "ms")))
+    # trk's execution time (10 ms; an end-to-end flow takes no response time from the
+    # schedulability analysis) and the transmission exceed 5 ms
+    flow.ownedPropertyAssociations.append(pa("Communication_Properties::Latency", span(0, 5, "ms")))
     root.endToEndFlows.append(flow)
     result = analyze_latency(root)
-    (chain,) = result.chains
+    (chain,) = async_chains(result)
     assert chain.name == "track" and chain.threads[-1] == "app_i_Instance.n2.cmd"
-    assert chain.expected_us == 50_000 and chain.met is False
+    assert chain.expected_us == 5_000 and chain.met is False
     assert not result.ok and "exceeds its Latency" in result.diagnostics[-1].message
 
 
@@ -185,3 +218,23 @@ def test_missing_period_and_cet_are_diagnosed_not_fatal():
     found = {(d.severity, d.location.path) for d in result.diagnostics}
     assert ("error", "app_i_Instance.n2.cmd") in found and ("warning", "app_i_Instance.n2.cmd") in found
     assert result.chains[0].worst_us > 0
+
+
+def test_flow_through_node_processes_is_refined_by_their_threads():
+    """A ROS end-to-end flow named at the node (process) level, whose flow specifications have no
+    implementation nor Latency, is walked through the threads its topics reach, with their
+    response times (OSATE would count the processes as adding nothing)."""
+    root = pipeline()
+    n1, n2 = root.componentInstances[4], root.componentInstances[5]
+    out_spec = new("FlowSpecificationInstance", name="f_out", kind="source")
+    in_spec = new("FlowSpecificationInstance", name="f_in", kind="sink")
+    n1.flowSpecifications.append(out_spec)
+    n2.flowSpecifications.append(in_spec)
+    flow = new("EndToEndFlowInstance", name="nodes", flow="nodes")
+    flow.flowElements.extend([out_spec, root.connectionInstances[1], in_spec])
+    root.endToEndFlows.append(flow)
+    (chain,) = async_chains(analyze_latency(root))
+    assert chain.threads == ("app_i_Instance.n1.trk", "app_i_Instance.n2.cmd")
+    transmission = Fraction(1020, 12_500_000) * 1_000_000
+    assert chain.worst_us == 12000 + transmission + 700  # trk's WCRT, the bus, cmd's CET
+    assert hop(chain, "processing", "trk").worst_method == "response time"

@@ -125,8 +125,10 @@ def test_json_document_shape():
     assert list(dom["tasks"][0]) == ["path", "priority", "period", "capacity", "deadline", "wcrt", "met"]
     assert [t["wcrt"] for t in dom["tasks"]] == [2000, 7000]
     assert data["analyses"]["simulation"]["deadline_misses"] == 0
-    (chain,) = data["analyses"]["latency"]["chains"]
-    assert chain["threads"] == ["robot_i_Instance.node.a", "robot_i_Instance.node.b"]
+    chain, sync = data["analyses"]["latency"]["chains"]  # one entry per system kind
+    assert (chain["mode"], sync["mode"]) == ("async", "sync")
+    assert chain["threads"] == sync["threads"] == ["robot_i_Instance.node.a", "robot_i_Instance.node.b"]
+    assert {"best_us", "worst_us", "expected_us", "met", "hops"} <= set(chain)
     assert data["ok"] is True and data["errors"] == []
     for warning in data["warnings"]:
         assert list(warning) == ["message", "file", "line", "column", "path"]
@@ -171,6 +173,8 @@ def test_csv_files(tmp_path: Path):
             "Simulation",
             "Latency",
             "Deployment",
+            "latency_AS-MF-ET-EQ",  # OSATE's latency report, per system kind
+            "latency_SS-MF-ET-EQ",
         )
     )
     bound = (tmp_path / "out" / "robot_i_Instance__BoundResourceAnalysis.csv").read_text(encoding="utf-8")

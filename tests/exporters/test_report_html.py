@@ -31,12 +31,13 @@ from rosaadl.importers.aadl_text import read_files
 from rosaadl.transforms.instantiate import instantiate
 
 SYSTEMS = Path(rosaadl.library.__file__).resolve().parent / "systems"
-SECTIONS = ["findings", "architecture", "cpu", "bus", "schedule", "tables"]
+SECTIONS = ["findings", "architecture", "cpu", "bus", "schedule", "latency", "tables"]
 CHARTS = {
     "architecture": "chart-architecture",
     "cpu": "chart-cpu",
     "bus": "chart-bus",
     "schedule": "chart-gantt",
+    "latency": "chart-latency",
 }
 ROOTS = {"tracking": "sys_tracking::tracking.impl", "rover": "sys_rover::rover.impl"}
 

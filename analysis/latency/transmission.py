@@ -1,0 +1,170 @@
+"""What the buses and protocols a connection is bound to add to its latency.
+
+OSATE's rules (``FlowLatencyAnalysisSwitch.processActualConnectionBindings*`` and
+``fillInQueuingTimes``), for every bus or virtual bus of the connection's
+``Actual_Connection_Binding``, and recursively for what a virtual bus is bound to:
+
+* a **periodic** bus or protocol (``Period`` set) samples the message: a *sampling
+  protocol/bus* row of that period (and an empty *queued* row);
+* a bus or protocol with a ``Transmission_Time`` (``Fixed`` + ``PerByte`` × bytes) transmits in
+  that time (*transmission time*), else in its ``Latency`` (*specified*); the bytes are the
+  connection's data size plus the ``Data_Size`` of each protocol on the way (its overhead);
+  rosaadl also reads the bytes over ``SEI::BandWidthCapacity`` when a physical bus has neither
+  (OSATE leaves the transmission out there);
+* a bus or protocol **without a period** is shared: once every flow of the system mode is
+  walked, each connection bound to it waits, at worst, for the transmissions of the other
+  connections bound to it that the flows met (*queued*, best case 0), and its sampling period
+  is 0.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any
+
+from rosaadl.analysis.busload import data_size_kbyte
+from rosaadl.analysis.instance_values import PropertyReader, SystemMode, category_of
+from rosaadl.analysis.latency.model import Contributor
+
+__all__ = ["Transmission"]
+
+_US = 1_000_000
+_PERIODIC = frozenset(
+    {
+        "thread",
+        "threadGroup",
+        "process",
+        "system",
+        "device",
+        "virtualProcessor",
+        "virtualBus",
+        "bus",
+        "abstract",
+    }
+)
+
+
+def _label(bus: Any) -> str:
+    from rosaadl.analysis.latency.contributors import contributor_label
+
+    return contributor_label(bus, "bus")
+
+
+class Transmission:
+    """Transmission rows of the connections of one system mode, and their bus queuing."""
+
+    def __init__(self, reader: PropertyReader, mode: SystemMode) -> None:
+        self.reader = reader
+        self.mode = mode
+        self.waiting: list[tuple[Any, Any, Contributor]] = []  # (bus, connection, connection row)
+        self.max_times: dict[tuple[int, int], Fraction] = {}
+
+    def us(self, obj: Any, name: str, part: str = "max") -> Fraction:
+        value = self.reader.seconds(obj, name, self.mode, part=part)
+        return value * _US if value is not None and value > 0 else Fraction(0)
+
+    def bindings(self, obj: Any) -> list[Any]:
+        bound = self.reader.targets(obj, "Deployment_Properties::Actual_Connection_Binding", self.mode) or []
+        return [b for b in bound if category_of(b) in ("bus", "virtualBus")]
+
+    def add_to(self, conn: Any, row: Contributor) -> None:
+        """Add the sampling and transmission rows of ``conn``'s buses under ``row``."""
+        self._sampling(conn, conn, row, set())
+        source = conn.source
+        size = data_size_kbyte(self.reader, source, self.mode) if source is not None else None
+        self._transmission(conn, (size or Fraction(0)) * 1000, row, conn, set())
+
+    def _sampling(self, obj: Any, conn: Any, row: Contributor, seen: set[int]) -> None:
+        for bus in self.bindings(obj):
+            if id(bus) in seen:
+                self.reader.report("error", "virtual buses are bound in a cycle", conn)
+                continue
+            period = (
+                self.us(bus, "Timing_Properties::Period") if category_of(bus) in _PERIODIC else Fraction(0)
+            )
+            if period > 0:
+                sampling = Contributor(bus, _label(bus), "sampling", period=period)
+                sampling.best_method = sampling.worst_method = "sampled_protocol"
+                queued = Contributor(bus, _label(bus), "queuing")
+                queued.best_method = queued.worst_method = "queued"
+                row.subs.extend([sampling, queued])
+            else:
+                self.waiting.append((bus, conn, row))
+            if category_of(bus) == "virtualBus":
+                self._sampling(bus, conn, row, seen | {id(bus)})
+
+    def _transmission(self, obj: Any, size: Fraction, row: Contributor, conn: Any, seen: set[int]) -> None:
+        for bus in self.bindings(obj):
+            if id(bus) in seen:
+                continue
+            overhead = data_size_kbyte(self.reader, bus, self.mode) or Fraction(0)
+            wrapped = size + overhead * 1000
+            self._time(bus, wrapped, row, conn)
+            if category_of(bus) == "virtualBus":
+                self._transmission(bus, wrapped, row, conn, seen | {id(bus)})
+
+    def transfer(self, bus: Any, size: Fraction) -> tuple[Fraction, Fraction, str]:
+        """(min, max, how) of sending ``size`` bytes over ``bus``."""
+        record = self.reader.value(bus, "Communication_Properties::Transmission_Time", self.mode)
+        if isinstance(record, dict) and (
+            record.get("Fixed") is not None or record.get("PerByte") is not None
+        ):
+            low = high = Fraction(0)
+            for key, factor in (("Fixed", Fraction(1)), ("PerByte", size)):
+                value = record.get(key)
+                if value is None:
+                    continue
+                low += (
+                    (self.reader.convert(bus, "Transmission_Time", value, "sec", part="min") or 0)
+                    * _US
+                    * factor
+                )
+                high += (self.reader.convert(bus, "Transmission_Time", value, "sec") or 0) * _US * factor
+            return low, high, "Transmission_Time"
+        if category_of(bus) == "bus":
+            capacity = self.reader.number(bus, "SEI::BandWidthCapacity", "KBytesps", self.mode)
+            if capacity is not None and capacity > 0:
+                time = size / (capacity * 1000) * _US
+                return time, time, "SEI::BandWidthCapacity"
+        return Fraction(0), Fraction(0), ""
+
+    def _time(self, bus: Any, size: Fraction, row: Contributor, conn: Any) -> None:
+        latency_best = self.us(bus, "Communication_Properties::Latency", "min")
+        latency_worst = self.us(bus, "Communication_Properties::Latency")
+        low, high, how = self.transfer(bus, size)
+        if latency_worst == 0 and high == 0:
+            return
+        sub = Contributor(bus, _label(bus), "transmission")
+        sub.specified_best, sub.specified_worst = latency_best, latency_worst
+        if high > 0:
+            sub.worst, sub.worst_method = high, "transmission"
+            sub.comment(
+                "Using data transfer time"
+                if how == "Transmission_Time"
+                else "Data size over SEI::BandWidthCapacity"
+            )
+            if size == 0:
+                sub.comment("Data size = 0. Possibly data type on port missing")
+        else:
+            sub.worst, sub.worst_method = latency_worst, "specified"
+            sub.comment("Using specified bus latency")
+        self.max_times[(id(bus), id(conn))] = sub.worst
+        if low > 0:
+            sub.best, sub.best_method = low, "transmission"
+        elif latency_best > 0:
+            sub.best, sub.best_method = latency_best, "specified"
+        row.subs.append(sub)
+
+    def fill_queuing(self, bound: dict[int, list[Any]]) -> None:
+        """Add the waiting time of each connection on each shared bus (``fillInQueuingTimes``):
+        ``bound`` maps a bus to every connection bound to it in the system mode."""
+        for bus, conn, row in self.waiting:
+            others = bound.get(id(bus), [])
+            total = sum((self.max_times.get((id(bus), id(c)), Fraction(0)) for c in others), Fraction(0))
+            wait = total - self.max_times.get((id(bus), id(conn)), Fraction(0))
+            queued = Contributor(bus, _label(bus), "queuing", worst=max(wait, Fraction(0)))
+            queued.best_method = queued.worst_method = "queued"
+            sampling = Contributor(bus, _label(bus), "sampling")
+            sampling.best_method = sampling.worst_method = "sampled_protocol"
+            row.subs.extend([queued, sampling])
+        self.waiting = []
