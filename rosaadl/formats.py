@@ -123,6 +123,20 @@ def _is_rosmod_folder(path: Path) -> bool:
     return rosmod_text.is_rosmod_project(path)
 
 
+def _read_ros2_package(path: Path, **_: Any) -> Loaded:
+    from rosaadl.importers.ros2_package import read_ros2_packages
+
+    warnings: list[Diagnostic] = []
+    project = read_ros2_packages([path], warnings)
+    return Loaded([project], warnings, kind="rosmod")
+
+
+def _is_ros2_package_folder(path: Path) -> bool:
+    from rosaadl.importers.ros2_package import is_ros2_package_folder
+
+    return is_ros2_package_folder(path)
+
+
 def _is_aadl_folder(path: Path) -> bool:
     return any(p.suffix.lower() in (".aadl", ".aadl2") for p in path.rglob("*") if p.is_file())
 
@@ -138,6 +152,13 @@ def readers() -> tuple[Reader, ...]:
             _read_rosmod_text,
             "a ROSMOD textual project (folder or .rml)",
             folder=_is_rosmod_folder,
+        ),
+        Reader(
+            "ros2-package",
+            (),
+            _read_ros2_package,
+            "ROS 2 rclpy packages, read statically (a package folder or a workspace holding them)",
+            folder=_is_ros2_package_folder,
         ),
         Reader("webgme", (".webgmex",), _read_webgmex, "a WebGME ROSMOD export"),
         Reader("aaxl2", (".aaxl2",), _read_aaxl2, "an OSATE instance or declarative model"),
@@ -159,7 +180,9 @@ def reader_for(path: str | os.PathLike[str]) -> Reader:
         for reader in readers():
             if reader.folder is not None and reader.folder(path):
                 return reader
-        raise UsageError("the folder holds neither a ROSMOD project nor .aadl files", file=str(path))
+        raise UsageError(
+            "the folder holds neither a ROSMOD project, a ROS 2 package nor .aadl files", file=str(path)
+        )
     suffix = path.suffix.lower()
     for reader in readers():
         if suffix in reader.suffixes:
