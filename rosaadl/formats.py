@@ -181,7 +181,8 @@ def reader_for(path: str | os.PathLike[str]) -> Reader:
             if reader.folder is not None and reader.folder(path):
                 return reader
         raise UsageError(
-            "the folder holds neither a ROSMOD project, a ROS 2 package nor .aadl files", file=str(path)
+            "the folder holds neither a ROSMOD project nor .aadl files (nor a ROS 2 package.xml)",
+            file=str(path),
         )
     suffix = path.suffix.lower()
     for reader in readers():

@@ -139,6 +139,19 @@ class _Builder:
             period = timer.period
             if timer.parameter and timer.parameter in parameters:
                 period = period_seconds(parameters[timer.parameter])
+            elif launched and timer.derived in launched.parameters:
+                period = None
+                self.warn(
+                    f"timer {timer.name!r} of node {name!r}: its period is computed from parameter "
+                    f"{timer.derived!r}, which the launch file sets; the period is not known",
+                    launched.location,
+                )
+            elif period is None and timer.parameter:
+                self.warn(
+                    f"timer {timer.name!r} of node {name!r}: parameter {timer.parameter!r} has no value; "
+                    "the timer is kept without a period",
+                    timer.location,
+                )
             periods.append(period)
         signature = (node.key, tuple(topics), tuple(periods))
         key = _token(name)
@@ -166,13 +179,6 @@ class _Builder:
                 timer_name += "_"
             timer_names.add(timer_name)
             comp.timers.append(model.new("rosmod.Timer", name=timer_name, period=period))
-            if period is None:
-                self.warn(
-                    f"timer {timer.name!r} of node {name!r}: its period is not known"
-                    + (f" (parameter {timer.parameter!r} has no value)" if timer.parameter else "")
-                    + "; the timer is kept without a period",
-                    timer.location,
-                )
         self.package(node.package).components.append(comp)
         self.components[key] = (signature, comp)
         return comp

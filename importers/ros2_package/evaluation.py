@@ -41,7 +41,8 @@ class Known:
     """A value found in the source, and the node parameter it is the default of, if any."""
 
     value: object
-    parameter: str | None = None
+    parameter: str | None = None  #: the value is this parameter's (its default, until set)
+    derived: str | None = None  #: the value is computed from this parameter's
 
 
 @dataclass
@@ -190,10 +191,10 @@ def _duration(call: ast.Call, scope: Scope) -> Known | _Unknown:
         if not isinstance(value, Known) or not _number(value.value):
             return UNKNOWN
         total += value.value * scale[keyword.arg]  # type: ignore[operator]
-        parameter = parameter or value.parameter
+        parameter = parameter or value.parameter or value.derived
     if call.args:
         return UNKNOWN
-    return Known(total, parameter)
+    return Known(total, None, parameter)
 
 
 def evaluate(node: ast.expr | None, scope: Scope) -> Known | _Unknown:
@@ -211,14 +212,16 @@ def evaluate(node: ast.expr | None, scope: Scope) -> Known | _Unknown:
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
         operand = evaluate(node.operand, scope)
         if isinstance(operand, Known) and _number(operand.value):
-            value = -operand.value if isinstance(node.op, ast.USub) else operand.value  # type: ignore[operator]
-            return Known(value, operand.parameter)
+            if isinstance(node.op, ast.UAdd):
+                return operand
+            return Known(-operand.value, None, operand.parameter or operand.derived)  # type: ignore[operator]
         return UNKNOWN
     if isinstance(node, ast.BinOp):
         left, right = evaluate(node.left, scope), evaluate(node.right, scope)
         if isinstance(left, Known) and isinstance(right, Known):
             value = _binary(node.op, left.value, right.value)
-            return Known(value, left.parameter or right.parameter) if value is not UNKNOWN else UNKNOWN
+            source = left.parameter or left.derived or right.parameter or right.derived
+            return Known(value, None, source) if value is not UNKNOWN else UNKNOWN
         return UNKNOWN
     if isinstance(node, ast.JoinedStr):
         parts = []
@@ -245,7 +248,8 @@ def evaluate(node: ast.expr | None, scope: Scope) -> Known | _Unknown:
             if not isinstance(inner, Known) or node.keywords:
                 return UNKNOWN
             try:
-                return Known({"float": float, "int": int, "str": str}[func.id](inner.value), inner.parameter)
+                converted = {"float": float, "int": int, "str": str}[func.id](inner.value)
+                return Known(converted, inner.parameter, inner.derived)
             except (TypeError, ValueError, OverflowError):
                 return UNKNOWN
         name = func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""

@@ -47,6 +47,7 @@ class TimerFact:
     period: Decimal | None
     location: Location = field(default_factory=Location)
     parameter: str | None = None  #: the node parameter whose value is the period
+    derived: str | None = None  #: the node parameter the period is computed from
 
 
 @dataclass

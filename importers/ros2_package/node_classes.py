@@ -338,9 +338,9 @@ class _Reader:
         expr = _argument(call, names, names[0])
         value = evaluate(expr, scope)
         period = None
-        parameter = None
+        parameter = derived = None
         if isinstance(value, Known):
-            parameter = value.parameter
+            parameter, derived = value.parameter, value.derived
             period = period_seconds(value.value)
         callback = _argument(call, names, "callback")
         attribute = _assigned_attribute(call, self.tree, raw=True)
@@ -361,7 +361,7 @@ class _Reader:
         name = _assigned_attribute(call, self.tree) or (
             callback.attr if isinstance(callback, ast.Attribute) else f"timer_{call.lineno}"
         )
-        fact.timers.append(TimerFact(name, period, self.at(call), parameter))
+        fact.timers.append(TimerFact(name, period, self.at(call), parameter, derived))
 
     def qos(self, expr: ast.expr | None, scope: Scope, call: ast.Call) -> dict[str, str]:
         if expr is None:
