@@ -13,6 +13,8 @@ transformation (``transforms.rosmod_to_aadl``).
   is named in a warning at the place it is created.
 - The ``.msg``/``.srv`` definitions found become the messages and services of a ROSMOD package
   named after their interface package (their fields give ``Data_Size`` where fixed-size).
+- Measured message sizes (a running graph) become project properties ``Data_Size:<pkg/Type>``,
+  which the transformation gives as ``Data_Size`` to a type that has no fixed size.
 - A **deployment** per launch file (or running graph), a ROSMOD node per launched node holding
   one instance of its component; without any, one deployment that runs every node once.
 
@@ -218,4 +220,8 @@ def build_project(facts: SystemFacts, warnings: list[Diagnostic]) -> EObject:
     builder = _Builder(facts, warnings)
     builder.interfaces()
     builder.deployments()
+    for type_name, size in sorted(facts.message_sizes.items()):
+        builder.project.properties.append(
+            model.new("rosmod.Property", key=f"{ros_msg.MEASURED_SIZE}{type_name}", value=str(size))
+        )
     return builder.project
