@@ -106,18 +106,30 @@ def _read_package(
         tree = parse_python(text, shown, warnings) if text is not None else None
         if tree is None:
             continue
-        if relative.parts == ("setup.py",):
-            package.entries.extend(entry_points(tree, shown, warnings))
-        elif lowered.endswith(".launch.py") or relative.parts[0] == "launch":
-            package.launches.append(
-                (path.name.removesuffix(".py").removesuffix(".launch"), launch_actions(tree, shown, warnings))
+        try:
+            _read_source(package, tree, path, relative, facts, warnings)
+        except RecursionError:
+            warnings.append(
+                Diagnostic("warning", "the source nests too deeply to be read; not read", Location(shown))
             )
-        else:
-            found = read_module(tree, shown, name, warnings)
-            package.modules[_module_name(relative)] = found
-            for node in found.nodes:
-                facts.nodes[node.key] = node
     return package
+
+
+def _read_source(
+    package: _Package, tree, path: Path, relative: Path, facts: SystemFacts, warnings: list[Diagnostic]
+) -> None:
+    """What one Python file of ``package`` says: entry points, launch actions or nodes."""
+    shown = str(path)
+    if relative.parts == ("setup.py",):
+        package.entries.extend(entry_points(tree, shown, warnings))
+    elif path.name.lower().endswith(".launch.py") or relative.parts[0] == "launch":
+        name = path.name.removesuffix(".py").removesuffix(".launch")
+        package.launches.append((name, launch_actions(tree, shown, warnings)))
+    else:
+        found = read_module(tree, shown, package.name, warnings)
+        package.modules[_module_name(relative)] = found
+        for node in found.nodes:
+            facts.nodes[node.key] = node
 
 
 def _executables(packages: dict[str, _Package]) -> dict[tuple[str, str], list[NodeFact]]:

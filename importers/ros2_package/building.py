@@ -36,6 +36,8 @@ from rosaadl.importers.ros2_package.facts import LaunchedNode, NodeFact, PortFac
 
 __all__ = ["build_project", "resolve_name", "port_names", "period_seconds"]
 
+#: Periods from this many seconds on (about 31 years) are not taken as timer periods.
+_LONGEST_PERIOD = Decimal(10**9)
 _NOT_NAME = re.compile(r"[^A-Za-z0-9_]+")
 
 
@@ -80,8 +82,10 @@ def period_seconds(value: object) -> Decimal | None:
     """A timer period in seconds from a value read in the source; None unless a positive number."""
     if isinstance(value, bool) or not isinstance(value, (int, float, Decimal)):
         return None
+    if isinstance(value, int) and not 0 < value < _LONGEST_PERIOD:
+        return None
     period = Decimal(str(value))
-    return period if period > 0 else None
+    return period if period.is_finite() and 0 < period < _LONGEST_PERIOD else None
 
 
 class _Builder:

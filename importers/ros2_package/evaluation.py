@@ -21,6 +21,8 @@ __all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "literal_names"]
 
 #: Method calls followed into the method's body at most this deep.
 MAX_CALL_DEPTH = 4
+#: Largest number arithmetic is done on (no computation on huge literals).
+MAX_NUMBER = 10**18
 #: Longest text a string operation may produce (``'x' * 10**9`` is not computed).
 MAX_TEXT = 4096
 
@@ -84,6 +86,8 @@ def _binary(op: ast.operator, left: object, right: object) -> object:
         return UNKNOWN
     if _number(left) and _number(right):
         if isinstance(op, (ast.Div, ast.FloorDiv)) and right == 0:
+            return UNKNOWN
+        if abs(left) > MAX_NUMBER or abs(right) > MAX_NUMBER:  # type: ignore[arg-type]
             return UNKNOWN
         return func(left, right)
     if isinstance(op, ast.Add) and isinstance(left, str) and isinstance(right, str):
