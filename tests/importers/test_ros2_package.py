@@ -223,3 +223,12 @@ def test_cli_imports_and_refuses(tmp_path, capsys):
     assert "package.xml:1" in err and "Traceback" not in err
     assert main(["check", str(bad)]) == 1
     assert main(["import", "ros2-package", str(tmp_path / "none"), "-o", str(out)]) == 2
+
+
+def test_convert_takes_the_imported_model_and_the_packages_themselves(tmp_path, capsys):
+    model_file = tmp_path / "tutorial.json"
+    assert main(["-q", "import", "ros2-package", str(TUTORIAL), "-o", str(model_file)]) == 0
+    for source, out in ((model_file, tmp_path / "from_model"), (TUTORIAL, tmp_path / "from_packages")):
+        assert main(["-q", "convert", str(source), "-o", str(out)]) == 0, capsys.readouterr().err
+        deployment = (out / "pubsub_deployment.aadl").read_text()
+        assert "port talker." in deployment and "-> listener." in deployment
