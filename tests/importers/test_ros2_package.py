@@ -232,3 +232,22 @@ def test_convert_takes_the_imported_model_and_the_packages_themselves(tmp_path, 
         assert main(["-q", "convert", str(source), "-o", str(out)]) == 0, capsys.readouterr().err
         deployment = (out / "pubsub_deployment.aadl").read_text()
         assert "port talker." in deployment and "-> listener." in deployment
+
+
+def test_measured_sizes_become_the_data_size_of_types_without_a_fixed_one():
+    from rosaadl.importers import ros_msg
+    from rosaadl.importers.ros2_package.building import build_project
+    from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, SystemFacts
+
+    facts = SystemFacts("measured")
+    facts.nodes["/a"] = NodeFact("/a", "a", ports=[PortFact("Publisher", "std_msgs/String", "/t")])
+    facts.nodes["/b"] = NodeFact("/b", "b", ports=[PortFact("Subscriber", "std_msgs/String", "/t")])
+    facts.message_sizes = {"std_msgs/String": 28}
+    project = build_project(facts, [])
+    assert ros_msg.measured_sizes(project) == {"std_msgs/String": 28}
+    converted = rosmod_to_aadl.rosmod_to_aadl(project)
+    [data] = [c for u in converted.model.units for c in getattr(u, "classifiers", []) if c.name == "String"]
+    [size] = [a for a in data.ownedPropertyAssociations if a.property.endswith("Data_Size")]
+    assert size.ownedValues[0].value.value == 28
+    project.properties[0].value = "-3"
+    assert ros_msg.measured_sizes(project) == {}
