@@ -17,7 +17,7 @@ import operator
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-__all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "literal_names"]
+__all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "run_body", "stored_names"]
 
 #: Method calls followed into the method's body at most this deep.
 MAX_CALL_DEPTH = 4
@@ -170,17 +170,24 @@ def run_body(body: list[ast.stmt], scope: Scope) -> Known | _Unknown:
             value = evaluate(stmt.value, current)
             names[stmt.target.id] = value if isinstance(value, Known) else Known(UNKNOWN)
         else:
-            for name in literal_names(stmt):
+            for name in stored_names(stmt):
                 names[name] = Known(UNKNOWN)
     return UNKNOWN
 
 
-def literal_names(stmt: ast.AST) -> set[str]:
-    """The plain names ``stmt`` assigns anywhere inside it."""
+def stored_names(stmt: ast.AST) -> set[str]:
+    """The names ``stmt`` assigns anywhere inside it: plain names, and ``self.x`` as ``"self.x"``."""
     found = set()
     for node in ast.walk(stmt):
         if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
             found.add(node.id)
+        elif (
+            isinstance(node, ast.Attribute)
+            and isinstance(node.ctx, ast.Store)
+            and isinstance(node.value, ast.Name)
+            and node.value.id == "self"
+        ):
+            found.add("self." + node.attr)
     return found
 
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers.ros2_package.building import period_seconds
-from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate
+from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate, stored_names
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
 
 __all__ = ["ModuleNodes", "read_module", "dotted"]
@@ -265,13 +265,13 @@ class _Reader:
             if isinstance(stmt, (ast.For, ast.AsyncFor, ast.While)):
                 self.block(stmt.body, current, fact, receivers, attributes, in_loop=True)
                 self.block(stmt.orelse, current, fact, receivers, attributes, in_loop=in_loop)
-                for name in _stores(stmt):
+                for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.If, ast.With, ast.AsyncWith, ast.Try)):
                 for part in _blocks(stmt):
                     self.block(part, current, fact, receivers, attributes, in_loop=in_loop)
-                for name in _stores(stmt):
+                for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
@@ -292,7 +292,7 @@ class _Reader:
                     names["self." + target.attr] = known
                     attributes["self." + target.attr] = known
             else:
-                for name in _stores(stmt):
+                for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
 
     def create(
@@ -508,21 +508,6 @@ def _blocks(stmt: ast.stmt) -> list[list[ast.stmt]]:
     for handler in getattr(stmt, "handlers", None) or []:
         parts.append(handler.body)
     return parts
-
-
-def _stores(stmt: ast.AST) -> set[str]:
-    found = set()
-    for node in ast.walk(stmt):
-        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
-            found.add(node.id)
-        elif (
-            isinstance(node, ast.Attribute)
-            and isinstance(node.ctx, ast.Store)
-            and isinstance(node.value, ast.Name)
-            and node.value.id == "self"
-        ):
-            found.add("self." + node.attr)
-    return found
 
 
 def _mark_parents(tree: ast.Module) -> None:

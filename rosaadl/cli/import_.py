@@ -8,9 +8,11 @@ first word is an input file or folder (``rosaadl import x.aaxl2 -o m.xmi``).
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import click
+from pyecore.ecore import EObject
 
 from rosaadl import model
 from rosaadl.cli.common import Options, Report, output_option, pass_options, time_unit_option
@@ -36,16 +38,29 @@ def command() -> None:
     packages (``import ros2-package``) or a running ROS 2 graph (``import ros2-graph``)."""
 
 
-def _written(options: Options, report: Report, root, out: Path, source: str, kind: str) -> None:
+def _import(options: Options, out: Path, source: str, read: Callable[[list], tuple[EObject, str]]) -> None:
+    """Run ``read`` (it appends its warnings to the list it is given and returns the root read and
+    its kind), write the model to ``out`` and exit: 1 with every located error, no file written."""
+    from rosaadl.errors import RosaadlError
+
+    if out.suffix.lower() not in (".xmi", ".json"):
+        raise UsageError("the output must be a .xmi or .json model file", file=str(out))
+    report = Report()
+    warnings: list = []
+    try:
+        root, kind = read(warnings)
+    except UsageError:
+        raise
+    except RosaadlError as exc:
+        for error in expand_errors(exc):
+            report.error(error)
+        sys.exit(report.emit(options))
+    report.note(warnings, info=True)
     written = model.save(root, out)
     options.progress(f"wrote {written}")
     report.say(f"{source} -> {written}")
     report.data.update({"input": source, "output": str(written), "kind": kind})
-
-
-def _model_output(out: Path) -> None:
-    if out.suffix.lower() not in (".xmi", ".json"):
-        raise UsageError("the output must be a .xmi or .json model file", file=str(out))
+    sys.exit(report.emit(options))
 
 
 @command.command("file")
@@ -59,26 +74,18 @@ def import_file(
     options: Options, source: Path, out: Path, time_unit: str, project: str | None, strict: bool
 ) -> None:
     """Import an OSATE .aaxl2, a Cheddar .xmlv3/.xml, a ROSMOD project or .webgmex, or AADL text."""
-    from rosaadl.errors import RosaadlError
 
-    _model_output(out)
-    report = Report()
-    try:
+    def read(warnings: list) -> tuple[EObject, str]:
         loaded = read_input(source, time_unit=time_unit, project=project, strict=strict)
-    except UsageError:
-        raise
-    except RosaadlError as exc:
-        for error in expand_errors(exc):
-            report.error(error)
-        sys.exit(report.emit(options))
-    if len(loaded.roots) > 1:
-        names = ", ".join(getattr(r, "name", "?") for r in loaded.roots)
-        raise UsageError(
-            f"the input holds several projects ({names}); choose one with --project", file=str(source)
-        )
-    report.note(loaded.warnings, info=True)
-    _written(options, report, loaded.root, out, str(source), loaded.kind)
-    sys.exit(report.emit(options))
+        if len(loaded.roots) > 1:
+            names = ", ".join(getattr(r, "name", "?") for r in loaded.roots)
+            raise UsageError(
+                f"the input holds several projects ({names}); choose one with --project", file=str(source)
+            )
+        warnings.extend(loaded.warnings)
+        return loaded.root, loaded.kind
+
+    _import(options, out, str(source), read)
 
 
 @command.command("ros2-package")
@@ -88,25 +95,14 @@ def import_file(
 def import_ros2_package(options: Options, folders: tuple[Path, ...], out: Path) -> None:
     """Read ROS 2 rclpy packages (package folders or workspaces) statically, without running them:
     nodes, publishers, subscriptions, services, clients, timers, Python launch files."""
-    from rosaadl.errors import Diagnostic, RosaadlError
     from rosaadl.fileio import existing
     from rosaadl.importers.ros2_package import read_ros2_packages
 
-    _model_output(out)
     for folder in folders:
         if not existing(folder) or not folder.is_dir():
             raise UsageError("no such folder", file=str(folder))
-    report = Report()
-    warnings: list[Diagnostic] = []
-    try:
-        project = read_ros2_packages(list(folders), warnings)
-    except RosaadlError as exc:
-        for error in expand_errors(exc):
-            report.error(error)
-        sys.exit(report.emit(options))
-    report.note(warnings, info=True)
-    _written(options, report, project, out, ", ".join(map(str, folders)), "rosmod")
-    sys.exit(report.emit(options))
+    source = ", ".join(map(str, folders))
+    _import(options, out, source, lambda warnings: (read_ros2_packages(list(folders), warnings), "rosmod"))
 
 
 @command.command("ros2-graph")
@@ -129,21 +125,10 @@ def import_ros2_graph(
     """Join a running ROS 2 graph (with rclpy) and read its nodes, topics with types and QoS,
     services and clients; --measure also samples topic rates (periodic publishers get timers)
     and message sizes."""
-    from rosaadl.errors import Diagnostic, RosaadlError
     from rosaadl.workflow.ros2_graph import read_graph
 
-    _model_output(out)
-    report = Report()
-    warnings: list[Diagnostic] = []
-    try:
-        project = read_graph(wait=wait, domain_id=domain_id, measure=measure, warnings=warnings)
-    except UsageError:
-        raise
-    except RosaadlError as exc:
-        for error in expand_errors(exc):
-            report.error(error)
-        sys.exit(report.emit(options))
-    report.note(warnings, info=True)
+    def read(warnings: list) -> tuple[EObject, str]:
+        return read_graph(wait=wait, domain_id=domain_id, measure=measure, warnings=warnings), "rosmod"
+
     where = f"ROS 2 graph (domain {domain_id})" if domain_id is not None else "ROS 2 graph"
-    _written(options, report, project, out, where, "rosmod")
-    sys.exit(report.emit(options))
+    _import(options, out, where, read)

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import pytest
 from conftest import corpus_dir
+from corpus_cases import ROSMOD_PROJECTS, WEBGME_SEEDS
 
 from rosaadl.exporters.rclpy import GenerationOptions, generate_workspace, naming
 from rosaadl.importers import aadl_text
@@ -35,17 +36,8 @@ CORPUS = corpus_dir() / "rosmod"
 
 
 def _textual_projects() -> list[Path]:
-    if not CORPUS.is_dir():
-        return []
-    from rosaadl.importers.rosmod_text import is_rosmod_project
-
-    found: list[Path] = []
-    for folder in sorted(p for p in CORPUS.rglob("*") if p.is_dir()):
-        if folder.name.startswith(".") or any(folder.is_relative_to(f) for f in found):
-            continue
-        if is_rosmod_project(folder):
-            found.append(folder)
-    return found
+    """The ROSMOD projects of the corpus (textual, legacy and the AGSE robot)."""
+    return [CORPUS / p for p in ROSMOD_PROJECTS if (CORPUS / p).exists()]
 
 
 @pytest.fixture(scope="module")
@@ -162,7 +154,7 @@ def _round_trip(
 
 
 @pytest.mark.corpus
-@pytest.mark.parametrize("folder", _textual_projects(), ids=lambda p: p.name)
+@pytest.mark.parametrize("folder", _textual_projects(), ids=lambda p: str(p.relative_to(CORPUS)))
 def test_rosmod_project_reads_back_from_its_rclpy_packages(library, folder, tmp_path, record_property):
     from rosaadl.importers.rosmod_text import read_project
 
@@ -172,7 +164,7 @@ def test_rosmod_project_reads_back_from_its_rclpy_packages(library, folder, tmp_
 
 
 @pytest.mark.corpus
-@pytest.mark.parametrize("seed", ("samples-2016-06-13_noTLC.webgmex", "samples-2018-05-19_noTLC.webgmex"))
+@pytest.mark.parametrize("seed", WEBGME_SEEDS)
 def test_webgme_projects_read_back_from_their_rclpy_packages(library, seed, tmp_path, record_property):
     from rosaadl.importers.rosmod_webgme import read_webgmex
 
