@@ -142,7 +142,8 @@ def _is_aadl_folder(path: Path) -> bool:
 
 
 def readers() -> tuple[Reader, ...]:
-    """Every format, most specific first (folders: ROSMOD projects before AADL folders)."""
+    """Every format, most specific first (folders: ROSMOD projects, then AADL folders, then ROS 2
+    packages)."""
     return (
         Reader("model-xmi", (".xmi",), _read_model_file, "a rosaadl model saved as XMI"),
         Reader("model-json", (".json",), _read_model_file, "a rosaadl model saved as JSON"),
@@ -153,13 +154,6 @@ def readers() -> tuple[Reader, ...]:
             "a ROSMOD textual project (folder or .rml)",
             folder=_is_rosmod_folder,
         ),
-        Reader(
-            "ros2-package",
-            (),
-            _read_ros2_package,
-            "ROS 2 rclpy packages, read statically (a package folder or a workspace holding them)",
-            folder=_is_ros2_package_folder,
-        ),
         Reader("webgme", (".webgmex",), _read_webgmex, "a WebGME ROSMOD export"),
         Reader("aaxl2", (".aaxl2",), _read_aaxl2, "an OSATE instance or declarative model"),
         Reader("cheddar", (".xmlv3", ".xml"), _read_cheddar, "a Cheddar 2 or 3 model"),
@@ -169,6 +163,15 @@ def readers() -> tuple[Reader, ...]:
             _read_aadl,
             "AADL text (a file or a folder of .aadl files)",
             folder=_is_aadl_folder,
+        ),
+        # after AADL folders: a folder of .aadl files that also holds a ROS 2 workspace (the
+        # demo's output) stays an AADL folder
+        Reader(
+            "ros2-package",
+            (),
+            _read_ros2_package,
+            "ROS 2 rclpy packages, read statically (a package folder or a workspace holding them)",
+            folder=_is_ros2_package_folder,
         ),
     )
 
