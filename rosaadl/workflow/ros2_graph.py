@@ -13,7 +13,8 @@ type has no fixed size (the project property ``Data_Size:<pkg/Type>``, which
 ``transforms.rosmod_to_aadl`` reads).
 
 The graph's own infrastructure (``/rosout``, ``/parameter_events``, the parameter services
-every node offers) is left out. What the graph cannot say (the host of each node, the execution
+every node offers, hidden nodes such as the ``ros2`` daemon's, whose names start with ``_``) is
+left out. What the graph cannot say (the host of each node, the execution
 times) is a warning: bind the model to a board and give profiles afterwards. A node that leaves
 during discovery, a topic announced with two types, a topic too quiet to measure: located
 warnings (the node's or topic's name as the path). No node at all: an error.
@@ -166,7 +167,7 @@ class _Observer:
         deployment = DeploymentFact("graph", location=Location(path="graph"))
         for name, namespace in sorted(set(self.node.get_node_names_and_namespaces())):
             full = _full_name(name, namespace)
-            if full == own:
+            if full == own or name.startswith("_"):  # hidden nodes: tools (ros2 daemon), this reader
                 continue
             if full in self.facts.nodes:
                 self.warn("two nodes of the same name; the second is left out", full)
@@ -283,7 +284,7 @@ def observe_graph(
     node = None
     try:
         node = rclpy.create_node(
-            f"rosaadl_graph_{os.getpid()}",
+            f"_rosaadl_graph_{os.getpid()}",
             context=context,
             start_parameter_services=False,
             enable_rosout=False,

@@ -208,6 +208,7 @@ def test_a_node_that_leaves_during_discovery_is_a_located_warning():
         {
             "/a": {"pub": [("/t", ["std_msgs/msg/String"]), ("/rosout", ["rcl_interfaces/msg/Log"])]},
             "/b": {"sub": [("/t", ["std_msgs/msg/String"])]},
+            "/_ros2cli_daemon_0": {"pub": [("/t", ["std_msgs/msg/String"])]},
         },
         gone={"/b"},
     )
