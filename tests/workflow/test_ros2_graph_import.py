@@ -121,13 +121,16 @@ def _ports(component) -> list[tuple[str, str, str]]:
 def test_live_graph_nodes_topics_services_rates_and_sizes(graph, tmp_path):
     warnings: list = []
     started = time.monotonic()
-    try:
-        project = ros2_graph.read_graph(wait=3.0, domain_id=graph, measure=1.5, warnings=warnings)
-    except ImportFormatError:  # discovery on a loaded machine may take longer: once more, longer
+    for wait in (3.0, 6.0, 12.0):  # discovery on a loaded machine may take longer: again, longer
         warnings.clear()
-        project = ros2_graph.read_graph(wait=8.0, domain_id=graph, measure=1.5, warnings=warnings)
-    assert time.monotonic() - started < 40
-    comps = _components(project)
+        try:
+            project = ros2_graph.read_graph(wait=wait, domain_id=graph, measure=1.5, warnings=warnings)
+        except ImportFormatError:
+            continue
+        comps = _components(project)
+        if len(comps) == 4:
+            break
+    assert time.monotonic() - started < 60
     assert sorted(comps) == ["listener", "mixed", "mixed_too", "talker"]
     assert _ports(comps["talker"]) == [("Publisher", "std_msgs/String", "/demo/chatter")]
     assert _ports(comps["listener"]) == [
