@@ -4,11 +4,12 @@ bounded time.
 Each format has a small valid seed made here (AADL text, ``.aaxl2`` and Cheddar files exported
 by rosaadl itself, ``.xmi``/``.json`` models, the bundled example's ROSMOD v0.3 software file in
 a copy of its project, v0.1 ``.rosml``, v0.4 JSON, a ``.webgmex`` archive, ``.msg``/``.srv``,
-the bundled measurements CSV, the files of the ROS 2 tutorial package of ``tests/data``); hypothesis mutates its bytes (truncation, deletion, duplication,
-insertion of random or hostile bytes, huge and odd numbers in place of digits) and ``rosaadl
-check --format json`` (``library add-profile`` for the CSV, the message parser for
-``.msg``/``.srv``) must give exit 0 or 1, every error with a file or an element path, and no
-``Traceback``, within :data:`SECONDS` and :data:`PEAK_MIB` per input. The whole module is
+the bundled measurements CSV, the files of the ROS 2 tutorial package of ``tests/data``);
+hypothesis mutates its bytes (truncation, deletion, duplication, insertion of random or hostile
+bytes, huge and odd numbers in place of digits) and ``rosaadl check --format json`` (``library
+add-profile`` for the CSV, the message parser for ``.msg``/``.srv``) must give exit 0 or 1,
+every error with a file or an element path, and no ``Traceback``, within :data:`SECONDS` and
+:data:`PEAK_MIB` per input. The whole module is
 bounded by the example counts (well under a minute)."""
 
 from __future__ import annotations
