@@ -57,6 +57,8 @@ __all__ = [
     "fill_service",
     "field_from_model",
     "message_data_size",
+    "MEASURED_SIZE",
+    "measured_sizes",
 ]
 
 #: Serialised size in bytes of the fixed-size primitive types (ROS 1 wire format).
@@ -656,3 +658,19 @@ def message_data_size(message: EObject, project: EObject | None = None) -> int |
     own = f"{package.name}/{message.name}" if package is not None else message.name
     fields = [field_from_model(f) for f in message.fields]
     return _size(fields, index.get, (own,))[0]
+
+
+#: The prefix of a ``rosmod.Project`` property giving a message type's measured size in bytes
+#: (``Data_Size:std_msgs/String`` → ``"28"``), set by ``rosaadl import ros2-graph --measure``.
+MEASURED_SIZE = "Data_Size:"
+
+
+def measured_sizes(project: EObject | None) -> dict[str, int]:
+    """The measured message sizes a project carries (:data:`MEASURED_SIZE`): type → bytes; a
+    value that is not a non-negative integer is ignored."""
+    found: dict[str, int] = {}
+    for prop in project.properties if project is not None else ():
+        key, value = prop.key or "", (prop.value or "").strip()
+        if key.startswith(MEASURED_SIZE) and value.isdigit() and len(value) <= 12:
+            found[key[len(MEASURED_SIZE) :]] = int(value)
+    return found

@@ -123,12 +123,27 @@ def _is_rosmod_folder(path: Path) -> bool:
     return rosmod_text.is_rosmod_project(path)
 
 
+def _read_ros2_package(path: Path, **_: Any) -> Loaded:
+    from rosaadl.importers.ros2_package import read_ros2_packages
+
+    warnings: list[Diagnostic] = []
+    project = read_ros2_packages([path], warnings)
+    return Loaded([project], warnings, kind="rosmod")
+
+
+def _is_ros2_package_folder(path: Path) -> bool:
+    from rosaadl.importers.ros2_package import is_ros2_package_folder
+
+    return is_ros2_package_folder(path)
+
+
 def _is_aadl_folder(path: Path) -> bool:
     return any(p.suffix.lower() in (".aadl", ".aadl2") for p in path.rglob("*") if p.is_file())
 
 
 def readers() -> tuple[Reader, ...]:
-    """Every format, most specific first (folders: ROSMOD projects before AADL folders)."""
+    """Every format, most specific first (folders: ROSMOD projects, then AADL folders, then ROS 2
+    packages)."""
     return (
         Reader("model-xmi", (".xmi",), _read_model_file, "a rosaadl model saved as XMI"),
         Reader("model-json", (".json",), _read_model_file, "a rosaadl model saved as JSON"),
@@ -149,6 +164,15 @@ def readers() -> tuple[Reader, ...]:
             "AADL text (a file or a folder of .aadl files)",
             folder=_is_aadl_folder,
         ),
+        # after AADL folders: a folder of .aadl files that also holds a ROS 2 workspace (the
+        # demo's output) stays an AADL folder
+        Reader(
+            "ros2-package",
+            (),
+            _read_ros2_package,
+            "ROS 2 rclpy packages, read statically (a package folder or a workspace holding them)",
+            folder=_is_ros2_package_folder,
+        ),
     )
 
 
@@ -159,7 +183,10 @@ def reader_for(path: str | os.PathLike[str]) -> Reader:
         for reader in readers():
             if reader.folder is not None and reader.folder(path):
                 return reader
-        raise UsageError("the folder holds neither a ROSMOD project nor .aadl files", file=str(path))
+        raise UsageError(
+            "the folder holds neither a ROSMOD project nor .aadl files (nor a ROS 2 package.xml)",
+            file=str(path),
+        )
     suffix = path.suffix.lower()
     for reader in readers():
         if suffix in reader.suffixes:

@@ -4,11 +4,12 @@ bounded time.
 Each format has a small valid seed made here (AADL text, ``.aaxl2`` and Cheddar files exported
 by rosaadl itself, ``.xmi``/``.json`` models, the bundled example's ROSMOD v0.3 software file in
 a copy of its project, v0.1 ``.rosml``, v0.4 JSON, a ``.webgmex`` archive, ``.msg``/``.srv``,
-the bundled measurements CSV); hypothesis mutates its bytes (truncation, deletion, duplication,
-insertion of random or hostile bytes, huge and odd numbers in place of digits) and ``rosaadl
-check --format json`` (``library add-profile`` for the CSV, the message parser for
-``.msg``/``.srv``) must give exit 0 or 1, every error with a file or an element path, and no
-``Traceback``, within :data:`SECONDS` and :data:`PEAK_MIB` per input. The whole module is
+the bundled measurements CSV, the files of the ROS 2 tutorial package of ``tests/data``);
+hypothesis mutates its bytes (truncation, deletion, duplication, insertion of random or hostile
+bytes, huge and odd numbers in place of digits) and ``rosaadl check --format json`` (``library
+add-profile`` for the CSV, the message parser for ``.msg``/``.srv``) must give exit 0 or 1,
+every error with a file or an element path, and no ``Traceback``, within :data:`SECONDS` and
+:data:`PEAK_MIB` per input. The whole module is
 bounded by the example counts (well under a minute)."""
 
 from __future__ import annotations
@@ -281,5 +282,31 @@ def test_message_definitions_are_answered(kind):
         except RosaadlError as exc:
             assert str(exc)
         assert time.perf_counter() - start < SECONDS
+
+    mutate()
+
+
+ROS2_TUTORIAL = ROOT / "tests" / "data" / "ros2_tutorial" / "src" / "py_pubsub"
+
+
+@pytest.mark.parametrize(
+    "member",
+    ["package.xml", "setup.py", "py_pubsub/publisher_member_function.py", "launch/pubsub.launch.py"],
+)
+def test_ros2_package_files_are_answered(member, tmp_path):
+    """A ROS 2 package (the tutorial fixture) with one of its files mutated: its manifest, its
+    entry points, a node, a launch file."""
+    package = tmp_path / "py_pubsub"
+    shutil.copytree(ROS2_TUTORIAL, package)
+    seed = (ROS2_TUTORIAL / member).read_bytes()
+    code, out, err, took = _run(["--format", "json", "check", str(package)])
+    _answered(code, out, err, took, "ros2-package seed")
+    assert code == 0, out[-2000:]
+
+    @_SETTINGS
+    @given(data=st.data())
+    def mutate(data):
+        (package / member).write_bytes(data.draw(mutated(seed)))
+        _answered(*_run(["--format", "json", "check", str(package)]), f"ros2-package {member} mutation")
 
     mutate()

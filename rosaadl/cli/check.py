@@ -24,8 +24,9 @@ __all__ = ["command"]
 @pass_options
 def command(options: Options, inputs: tuple[Path, ...], strict: bool) -> None:
     """Validate inputs: rosaadl models (.xmi/.json), AADL text, OSATE .aaxl2, Cheddar XML,
-    ROSMOD projects (folders, .rml, .webgmex). AADL files and folders given together are one
-    workspace: a package of one may be named from another."""
+    ROSMOD projects (folders, .rml, .webgmex), ROS 2 rclpy packages (folders with package.xml).
+    AADL files and folders given together are one workspace: a package of one may be named from
+    another."""
     report = Report()
     checked = []
     for result in check_inputs(list(inputs), strict=strict):

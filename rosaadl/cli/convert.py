@@ -22,7 +22,8 @@ __all__ = ["command"]
     type=click.Choice(["aadl", "rosmod"]),
     default="aadl",
     show_default=True,
-    help="aadl: a ROSMOD project (folder, .rml, .webgmex) to AADL packages; rosmod: AADL to a "
+    help="aadl: a ROSMOD project (folder, .rml, .webgmex, or a ROSMOD model .xmi/.json such as "
+    "import ros2-package writes, or ROS 2 package folders) to AADL packages; rosmod: AADL to a "
     "ROSMOD v0.3 project.",
 )
 @click.option("-o", "--output", "out", type=click.Path(path_type=Path), required=True, help="Output folder.")

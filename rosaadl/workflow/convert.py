@@ -27,6 +27,7 @@ from pyecore.ecore import EObject
 from rosaadl import fileio
 from rosaadl import model as _model
 from rosaadl.errors import Diagnostic, UsageError
+from rosaadl.formats import read_input, reader_for
 from rosaadl.properties import own_property
 from rosaadl.transforms import trace as tracing
 from rosaadl.transforms.aadl_to_rosmod import aadl_to_rosmod, is_rosmod_convention, top_level_systems
@@ -62,6 +63,10 @@ def convert_project_files(
     path = Path(source)
     if path.suffix.lower() == ".webgmex":
         projects = read_webgmex_projects(path, project=project, warnings=warnings)
+    elif path.suffix.lower() in (".xmi", ".json") or (
+        path.is_dir() and not rosmod_text.is_rosmod_project(path) and reader_for(path).name == "ros2-package"
+    ):
+        projects = [_rosmod_model(path, warnings)]
     else:
         projects = [rosmod_text.read_project(path, warnings=warnings)]
     several = len(projects) > 1
@@ -83,6 +88,17 @@ def convert_project_files(
     fileio.write_files(outputs)
     log.info("wrote %d file(s) for %d project(s)", len(outputs), len(projects))
     return [target for target, _ in outputs]
+
+
+def _rosmod_model(path: Path, warnings: list[Diagnostic] | None) -> EObject:
+    """The ROSMOD project of a rosaadl model file (``import ros2-package``, ``import ros2-graph``)
+    or of ROS 2 packages read statically; a :class:`UsageError` for an AADL model."""
+    loaded = read_input(path)
+    if loaded.kind != "rosmod":
+        raise UsageError("the model is not a ROSMOD project (convert --to aadl takes one)", file=str(path))
+    if warnings is not None:
+        warnings.extend(loaded.warnings)
+    return loaded.root
 
 
 def library_units(model: EObject) -> list[EObject]:
