@@ -17,7 +17,7 @@ And the peak memory of reading a file (``read_files``, without the library and c
 byte of the file: for the generated package, and for a file of corpus shape (the corpus's
 packages and property sets copied under new names, ``renamed_copies_text``, ``--copies-mb``
 MB).  The bound of the issue is 10x the file; the pyecore model alone is about 12x the text
-of the corpus's shape and 40x that of the generated package (see ``docs/performance.md``).
+of the corpus's shape and 40x that of the generated package (README, "Known limits").
 
 Usage: ``python -m benchmarks.bench_aadl_reader [--repeat N] [--components N] [--copies-mb M]``.
 Target of the issue: the reader reads >= 1 MB/s.

@@ -3,7 +3,7 @@
 Hostile inputs of each shape: a Cheddar file repeating an unknown section, a ``.webgmex``
 whose small archive expands to millions of JSON objects, an AADL file with a huge string
 literal, and large AADL files whose peak memory (measured in a child process) is the model's
-and a little more: no parse tree of the whole file is held (see ``docs/performance.md``).
+and a little more: no parse tree of the whole file is held (README, "Known limits").
 """
 
 from __future__ import annotations
