@@ -3,7 +3,8 @@
 A chain runs from a callback that takes a sensor's data to one that drives an actuator, over the
 model's links between callbacks:
 
-* a topic: a port connection from a thread to a thread (through processes, across boards),
+* a topic: a port connection from a thread to a thread (through processes, across boards; from
+  a port of a ROSMOD component, any callback of the component may be the writer),
   whose bus transmission is the latency analysis's (``Transmission_Time`` or bytes /
   ``SEI::BandWidthCapacity``, plus the ``Latency`` of the connection and of the buses);
 * inside a node: a flow path of the process from an in port to an out port joins the callback
@@ -86,6 +87,28 @@ def _thread_of(end: Any) -> Any | None:
     return None
 
 
+def _writers(end: Any, callbacks: Sequence[Callback]) -> list[Any]:
+    """The threads that may write a connection's source: its thread, or, for a port of a ROSMOD
+    component (a thread group, whose publishers any of its callbacks may use), every callback
+    thread of that component."""
+    thread = _thread_of(end)
+    if thread is not None:
+        return [thread]
+    owner = end.eContainer() if end is not None else None
+    while owner is not None and not hasattr(owner, "componentInstances"):
+        owner = owner.eContainer()
+    if owner is None or category_of(owner) not in ("threadGroup", "thread group"):
+        return []
+    inside = []
+    for callback in callbacks:
+        current = callback.thread.eContainer() if callback.thread is not None else None
+        while current is not None and current is not owner:
+            current = current.eContainer()
+        if current is owner:
+            inside.append(callback.thread)
+    return inside
+
+
 def callback_links(root: Any, callbacks: Sequence[Callback], mode: SystemMode) -> list[ChainLink]:
     """The links between callbacks: port connections, then the flow paths inside processes."""
     from rosaadl.model import component_instances
@@ -107,9 +130,9 @@ def callback_links(root: Any, callbacks: Sequence[Callback], mode: SystemMode) -
         links.append(ChainLink(src, dst, conn))
 
     for conn in connections:
-        src, dst = _thread_of(conn.source), _thread_of(conn.destination)
-        if src is not None and dst is not None:
-            add(by_thread.get(id(src)), by_thread.get(id(dst)), conn)
+        dst = by_thread.get(id(_thread_of(conn.destination)))
+        for src in _writers(conn.source, callbacks):
+            add(by_thread.get(id(src)), dst, conn)
     for process in component_instances(root):
         if category_of(process) != "process":
             continue

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
@@ -85,7 +85,8 @@ class ExecutorResult:
     executors: tuple[Executor, ...]
     callbacks: tuple[CallbackBound, ...]
     chains: tuple[CauseEffectChain, ...]
-    gantt: dict[str, tuple[tuple[str, int, Fraction, Fraction], ...]]
+    #: executor path → (simulated window, its intervals (callback path, thread, start, end)), µs
+    gantt: dict[str, tuple[Fraction, tuple[tuple[str, int, Fraction, Fraction], ...]]]
     diagnostics: tuple[Diagnostic, ...]
 
     @property
@@ -159,10 +160,12 @@ def executor_bounds(executor: Executor, interfering: Sequence[Callback]) -> dict
     return result
 
 
-def _gantt(executor: Executor) -> tuple[tuple[str, int, Fraction, Fraction], ...]:
+def _gantt(executor: Executor) -> tuple[Fraction, tuple[tuple[str, int, Fraction, Fraction], ...]]:
+    """The executor simulated from a synchronous release over a hyperperiod, at most two of its
+    longest periods (the window and the intervals of the executed work)."""
     timed = [c for c in executor.callbacks if c.period is not None and c.wcet > 0]
     if not timed:
-        return ()
+        return Fraction(0), ()
     base = time_base([t for c in timed for t in (c.period, c.wcet, c.deadline or c.period)])
     items = _scaled(timed, executor, base)
     span = min(math.lcm(*(c.period for c in items)), 2 * max(c.period for c in items))
@@ -174,10 +177,44 @@ def _gantt(executor: Executor) -> tuple[tuple[str, int, Fraction, Fraction], ...
         groups=[c.group for c in timed],
         quantum=5000 * base,
     )
-    return tuple(
+    merged: list[tuple[int, int, int, int]] = []
+    for cb, thread, start, end in run.intervals:  # slices of one job that follow each other: one bar
+        if merged and merged[-1][:2] == (cb, thread) and merged[-1][3] == start:
+            merged[-1] = (cb, thread, merged[-1][2], end)
+        else:
+            merged.append((cb, thread, start, end))
+    return Fraction(span, base), tuple(
         (timed[cb].path, thread, Fraction(start, base), Fraction(end, base))
-        for cb, thread, start, end in run.intervals[:_GANTT_INTERVALS]
+        for cb, thread, start, end in merged[:_GANTT_INTERVALS]
     )
+
+
+def _with_arrivals(root: Any, executors: Sequence[Executor], mode: Any) -> tuple[Executor, ...]:
+    """Executors whose callbacks without ``Period`` (subscriptions, as ROSMOD's) take the least
+    period of the callbacks that publish to them as minimum inter-arrival time (an
+    event-triggered link releases one job per message)."""
+    everything = [c for e in executors for c in e.callbacks]
+    periods = {c.path: c.period for c in everything}
+    links = callback_links(root, everything, mode)
+    changed = True
+    while changed:
+        changed = False
+        for link in links:
+            source, target = periods[link.source.path], link.destination
+            current = periods[target.path]
+            if target.period is None and source is not None and (current is None or source < current):
+                periods[target.path] = source
+                changed = True
+    result = []
+    for executor in executors:
+        callbacks = tuple(
+            replace(c, period=periods[c.path], deadline=c.deadline or periods[c.path])
+            if c.period is None
+            else c
+            for c in executor.callbacks
+        )
+        result.append(replace(executor, callbacks=callbacks))
+    return tuple(result)
 
 
 def _thread_wcrts(root: Any, schedulability: Any) -> dict[str, Fraction]:
@@ -193,7 +230,7 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
     root = instance_root(source)
     mode = system_modes(root)[0]
     diagnostics: list[Diagnostic] = []
-    executors = executors_from_instance(root, diagnostics, mode)
+    executors = _with_arrivals(root, executors_from_instance(root, diagnostics, mode), mode)
     thread_wcrt = _thread_wcrts(root, schedulability)
     bounds: dict[str, Fraction | None] = {}
     rows = []

@@ -71,9 +71,9 @@ def _preemption(interference: Interference, delta: int) -> int:
     return sum(rbf(t, c, delta) for t, c in interference)
 
 
-def _fixed_point(rhs: Callable[[int], int], start: int, horizon: int) -> int | None:
+def _fixed_point(rhs: Callable[[int], int], start: int, horizon: int, least: int = 0) -> int | None:
     """The least ``x >= start`` with ``rhs(x) <= x`` reached by iteration (None past ``horizon``)."""
-    x = max(start, 1)
+    x = max(start, least)
     while True:
         value = rhs(x)
         if value <= x:
@@ -96,6 +96,7 @@ def busy_window(
         lambda x: blocking + sum(rbf(c.period, c.wcet, x) for c in items) + _preemption(interference, x),
         1,
         horizon,
+        least=1,
     )
 
 

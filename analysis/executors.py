@@ -110,7 +110,8 @@ class Executor:
             return f"ROSMOD {self.scheme}"
         if self.kind == "single_threaded":
             return f"ROS 2 single-threaded ({self.client_library})"
-        return f"ROS 2 multi-threaded, {self.threads} threads ({self.client_library})"
+        plural = "s" if self.threads != 1 else ""
+        return f"ROS 2 multi-threaded, {self.threads} thread{plural} ({self.client_library})"
 
     def rank(self, callback: Callback) -> int:
         """Its place in the dispatch order of a snapshot: kind, then registration."""
