@@ -35,19 +35,13 @@ from rosaadl.analysis.executor_simulation import periodic_releases, simulate_exe
 from rosaadl.analysis.executors import Callback, Executor, executors_from_instance
 from rosaadl.analysis.instance_values import PropertyReader, instance_root, system_modes
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
-from rosaadl.analysis.rendering import csv_text, table
+from rosaadl.analysis.rendering import csv_text, fmt, json_number, table
 from rosaadl.analysis.tasks import time_base
 from rosaadl.errors import Diagnostic, Location
 
 __all__ = ["CallbackBound", "ExecutorResult", "analyze_executors", "executor_text", "executor_csv"]
 
 _GANTT_INTERVALS = 400
-
-
-def _num(value: Fraction | None) -> float | int | None:
-    if value is None:
-        return None
-    return int(value) if value.denominator == 1 else float(value)
 
 
 @dataclass(frozen=True)
@@ -73,9 +67,9 @@ class CallbackBound:
             "path": self.path,
             "executor": self.executor,
             "kind": self.kind,
-            "wcrt": _num(self.wcrt),
-            "thread_wcrt": _num(self.thread_wcrt),
-            "deadline": _num(self.deadline),
+            "wcrt": json_number(self.wcrt),
+            "thread_wcrt": json_number(self.thread_wcrt),
+            "deadline": json_number(self.deadline),
             "met": self.met,
         }
 
@@ -104,9 +98,9 @@ class ExecutorResult:
                 {
                     "name": c.name,
                     "paths": list(c.paths),
-                    "reaction_time": _num(c.reaction_time),
-                    "data_age": _num(c.data_age),
-                    "deadline": _num(c.deadline),
+                    "reaction_time": json_number(c.reaction_time),
+                    "data_age": json_number(c.data_age),
+                    "deadline": json_number(c.deadline),
                     "met": c.met,
                 }
                 for c in self.chains
@@ -304,8 +298,8 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
             diagnostics.append(
                 Diagnostic(
                     "error",
-                    f"reaction time {_num(chain.reaction_time)} us of {chain.name} exceeds its Latency "
-                    f"{_num(chain.deadline)} us",
+                    f"reaction time {fmt(chain.reaction_time)} us of {chain.name} exceeds its "
+                    f"Latency {fmt(chain.deadline)} us",
                     Location(path=chain.paths[0]),
                 )
             )

@@ -117,6 +117,20 @@ def _offsets(steps: Iterable[tuple[int, int]], limit: int) -> list[int]:
     return sorted(points)
 
 
+def _worst_response(
+    offsets: Iterable[int], demand: Callable[[int, int], int], first: Callable[[int], int], horizon: int
+) -> int | None:
+    """``max_A (F(A) - A)`` over ``offsets``, where ``F(A)`` is the least ``F >= first(A)`` with
+    ``demand(A, F) <= F`` (None when one of them passes ``horizon``)."""
+    worst = 0
+    for offset in offsets:
+        finish = _fixed_point(lambda x, a=offset: demand(a, x), first(offset), horizon)
+        if finish is None:
+            return None
+        worst = max(worst, finish - offset)
+    return worst
+
+
 def fifo_response_time(
     callbacks: Sequence[CallbackTiming],
     interference: Interference = (),
@@ -134,14 +148,16 @@ def fifo_response_time(
     window = busy_window(callbacks, interference, 0, horizon)
     if window is None:
         return None
-    worst = 0
-    for offset in _offsets(((c.period, 0) for c in callbacks), window):
-        work = sum(rbf(c.period, c.wcet, offset + 1) for c in callbacks)
-        finish = _fixed_point(lambda x, w=work: w + _preemption(interference, x), work, horizon)
-        if finish is None:
-            return None
-        worst = max(worst, finish - offset)
-    return worst
+
+    def released(offset: int) -> int:
+        return sum(rbf(c.period, c.wcet, offset + 1) for c in callbacks)
+
+    return _worst_response(
+        _offsets(((c.period, 0) for c in callbacks), window),
+        lambda offset, x: released(offset) + _preemption(interference, x),
+        released,
+        horizon,
+    )
 
 
 def np_fixed_priority_response_time(
@@ -171,19 +187,15 @@ def np_fixed_priority_response_time(
     )
     if window is None:
         return None
-    worst = 0
-    for offset in _offsets([(me.period, 0)], window):
-        own = blocking + rbf(me.period, me.wcet, offset + 1)
 
-        def rhs(x: int, own: int = own) -> int:
-            start = x - me.wcet + 1
-            return own + sum(rbf(c.period, c.wcet, start) for c in hep) + _preemption(interference, x)
+    def own(offset: int) -> int:
+        return blocking + rbf(me.period, me.wcet, offset + 1)
 
-        finish = _fixed_point(rhs, own, horizon)
-        if finish is None:
-            return None
-        worst = max(worst, finish - offset)
-    return worst
+    def demand(offset: int, x: int) -> int:
+        start = x - me.wcet + 1
+        return own(offset) + sum(rbf(c.period, c.wcet, start) for c in hep) + _preemption(interference, x)
+
+    return _worst_response(_offsets([(me.period, 0)], window), demand, own, horizon)
 
 
 def np_edf_response_time(
@@ -210,23 +222,22 @@ def np_edf_response_time(
     if window is None:
         return None
     steps = [(me.period, 0)] + [(c.period, c.deadline - me.deadline) for c in others]
-    worst = 0
-    for offset in _offsets(steps, window):
+
+    def own(offset: int) -> int:
         due = offset + me.deadline
         blocking = max((c.wcet - 1 for c in others if c.deadline > due), default=0)
-        own = blocking + (offset // me.period) * me.wcet + me.wcet
-        earlier = [(c, rbf(c.period, c.wcet, due - c.deadline + 1)) for c in others if c.deadline <= due]
+        return blocking + (offset // me.period) * me.wcet + me.wcet
 
-        def rhs(x: int, own: int = own, earlier: list = earlier) -> int:
-            start = x - me.wcet + 1
-            work = sum(min(rbf(c.period, c.wcet, start), cap) for c, cap in earlier)
-            return own + work + _preemption(interference, x)
+    def demand(offset: int, x: int) -> int:
+        due, start = offset + me.deadline, x - me.wcet + 1
+        work = sum(
+            min(rbf(c.period, c.wcet, start), rbf(c.period, c.wcet, due - c.deadline + 1))
+            for c in others
+            if c.deadline <= due
+        )
+        return own(offset) + work + _preemption(interference, x)
 
-        finish = _fixed_point(rhs, own, horizon)
-        if finish is None:
-            return None
-        worst = max(worst, finish - offset)
-    return worst
+    return _worst_response(_offsets(steps, window), demand, own, horizon)
 
 
 def polling_response_time(
@@ -257,18 +268,17 @@ def polling_response_time(
     window = busy_window(callbacks, interference, 0, horizon)
     if window is None:
         return None
-    worst = 0
-    for offset in _offsets([(me.period, 0)], window):
-        own = rbf(me.period, me.wcet, offset + 1)
 
-        def rhs(x: int, own: int = own) -> int:
-            start = x - me.wcet + 1
-            return own + sum(rbf(c.period, c.wcet, start) for c in others) + _preemption(interference, x)
+    def own(offset: int) -> int:
+        return rbf(me.period, me.wcet, offset + 1)
 
-        finish = _fixed_point(rhs, own, horizon)
-        if finish is None:
-            return None
-        worst = max(worst, finish - offset)
+    def demand(offset: int, x: int) -> int:
+        start = x - me.wcet + 1
+        return own(offset) + sum(rbf(c.period, c.wcet, start) for c in others) + _preemption(interference, x)
+
+    worst = _worst_response(_offsets([(me.period, 0)], window), demand, own, horizon)
+    if worst is None:
+        return None
     if worst <= me.period:
         rounds = sum(c.wcet for c in others) + sum(c.wcet for c in others if c.rank < me.rank) + me.wcet
         two_rounds = _fixed_point(lambda x: rounds + _preemption(interference, x), rounds, horizon)

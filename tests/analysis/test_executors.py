@@ -119,3 +119,32 @@ def test_a_higher_priority_node_on_the_core_preempts_the_executor():
     result = analyze_executors(system(low, high))
     assert wcrts(result) == {"a": 3000, "h": 1000}
     assert Fraction(3000) == result.callbacks[0].wcrt
+
+
+def test_an_end_to_end_flow_is_a_chain_with_its_latency_as_deadline():
+    """Timer a (T=10 ms, C=2 ms) publishes to subscription b (C=3 ms) of a node of lower priority
+    on the same core (so R_b = 3 + 2 = 5 ms): reaction time = data age = T_a + R_a + R_b =
+    10 + 2 + 5 = 17 ms, over a 12 ms Latency: an error."""
+    out = new("FeatureInstance", name="o", feature="o", category="event data port", direction="out")
+    inp = new("FeatureInstance", name="i", feature="i", category="event data port", direction="in")
+    a = callback("a", 10_000, 2_000, kind="Timer")
+    a.featureInstances.append(out)
+    b = callback("b", None, 3_000, kind="Subscriber", dispatch="Sporadic")
+    b.featureInstances.append(inp)
+    high = [pa("Thread_Properties::Priority", new("IntegerValue", value=5))]
+    root = system(component("n1", "process", a, props=high), component("n2", "process", b))
+    conn = new(
+        "ConnectionInstance", name="n1.a.o -> n2.b.i", kind="portConnection", source=out, destination=inp
+    )
+    root.connectionInstances.append(conn)
+    flow = new("EndToEndFlowInstance", name="e2e", flow="e2e")
+    flow.flowElements.extend([a, conn, b])
+    flow.ownedPropertyAssociations.append(pa("Communication_Properties::Latency", span(0, 12_000)))
+    root.endToEndFlows.append(flow)
+    result = analyze_executors(root)
+    assert wcrts(result) == {"a": 2000, "b": 5000}  # b's arrivals: one per period of a
+    chains = {c.name: c for c in result.chains}
+    assert chains["e2e"].reaction_time == chains["e2e"].data_age == 17_000
+    assert chains["e2e"].met is False
+    assert any("exceeds its Latency 12000 us" in d.message for d in result.diagnostics)
+    assert chains["n1.a -> n2.b"].reaction_time == 17_000
