@@ -16,14 +16,14 @@ maximal path of callbacks over these links (from callbacks no callback feeds to 
 feed none), at most ``limit`` of them.
 
 **Maximum reaction time** (the time from an input to the first output that reflects it):
-Davare et al., DAC 2007, eq. (1), ``sum_k (T_k + R_k)``, with the refinement of Teper, Günzel,
-Ueter, von der Brüggen & Chen, RTSS 2022, section V (Theorem 2): a callback released by the
+Davare et al., DAC 2007, ``sum_k (T_k + R_k)``, with the refinement of Teper, Günzel, Ueter,
+von der Brüggen & Chen, RTSS 2022 (event-triggered links): a callback released by the
 arrival of its input (a subscription: event-triggered link) adds only its response time
 ``R_k``, a timer callback (time-triggered link, it samples the latest data) ``T_k + R_k``;
 plus the transmission of every topic on the way. **Maximum data age** (the time from an input
 to the last output still based on it) equals the maximum reaction time: Günzel, Teper, von der
-Brüggen, Chen, ECRTS 2023, Theorem 1 ("maximum reaction time and maximum data age are
-equivalent"), so the same bound bounds both. Times are exact microseconds.
+Brüggen, Chen, ECRTS 2023 (their main result: maximum reaction time and maximum data age
+are equal), so the same bound bounds both. Times are exact microseconds.
 """
 
 from __future__ import annotations

@@ -170,10 +170,10 @@ def np_fixed_priority_response_time(
     ``PFIFO`` queue: the most urgent callback first, FIFO among equals, run to completion).
 
     The classical non-preemptive fixed-priority analysis (Davis, Burns, Bril & Lukkien, Real-Time
-    Systems 35(3), 2007, eqs. 13-16, in Prosa's discrete form): blocking ``B = max(C_lp) - 1`` by one
-    job of a less urgent callback; level-i busy window ``L = B + sum_hep rbf(L) + I(L)`` (or the
-    processor's busy window ``sum rbf(L) + I(L)`` that holds it, when shorter); for each
-    offset ``A = q * T_i < L`` the least ``F`` with
+    Systems 35(3), 2007, its non-preemptive response-time analysis, in Prosa's discrete form):
+    blocking ``B = max(C_lp) - 1`` by one job of a less urgent callback; level-i busy window
+    ``L = B + sum_hep rbf(L) + I(L)`` (or the processor's busy window ``sum rbf(L) + I(L)``
+    that holds it, when shorter); for each offset ``A = q * T_i < L`` the least ``F`` with
     ``F >= B + rbf_i(A + 1) + sum_{j != i, P_j >= P_i} rbf_j(F - C_i + 1) + I(F)``; bound
     ``max_A (F - A)``. Callbacks of equal priority count as more urgent (FIFO among equals
     orders them by arrival, which this bounds).
@@ -207,7 +207,8 @@ def np_edf_response_time(
     """Response-time bound of ``callbacks[index]`` under non-preemptive EDF (ROSMOD's ``EDF``
     queue: the earliest absolute deadline first, run to completion).
 
-    George, Rivierre & Spuri (INRIA RR-2966, 1996), Theorem 14, in discrete time: for a job of
+    George, Rivierre & Spuri (INRIA RR-2966, 1996), the non-preemptive EDF response time, in
+    discrete time: for a job of
     ``i`` released at ``A`` (absolute deadline ``A + D_i``) the least ``F`` with
     ``F >= B(A) + floor(A / T_i) * C_i + C_i + sum_{j != i, D_j <= A + D_i} min(rbf_j(F - C_i + 1),
     rbf_j(A + D_i - D_j + 1)) + I(F)``, where ``B(A) = max(C_j - 1 | D_j > A + D_i)`` is the
@@ -257,11 +258,12 @@ def polling_response_time(
       callback): for every offset ``A = q * T_i`` below the busy window (Lemma 6), the least ``F``
       with ``F >= rbf_i(A + 1) + sum_{j != i} rbf_j(F - C_i + 1) + I(F)``;
     * the starvation freedom of the polling rounds (Blaß, Casini, Bozhko & Brandenburg, RTSS 2021,
-      section IV: every callback ready at a polling point runs once in that round): when the first
-      bound is at most ``T_i``, no older job of ``i`` is pending when a job is released, so the job
-      runs in the round after the one under way at its release. That round's remainder holds at
-      most one job of every other callback, the next one at most one job of every callback ordered
-      before ``i``: ``R = sum_{j != i} C_j + sum_{rank_j < rank_i} C_j + C_i + I(R)``.
+      their round-robin argument: every callback ready at a polling point runs once in that
+      round): when the first bound is at most ``T_i``, no older job of ``i`` is pending when a
+      job is released, so the job runs in the round after the one under way at its release.
+      That round's remainder holds at most one job of every other callback, the next one at
+      most one job of every callback ordered before ``i``:
+      ``R = sum_{j != i} C_j + sum_{rank_j < rank_i} C_j + C_i + I(R)``.
     """
     me = callbacks[index]
     others = [c for k, c in enumerate(callbacks) if k != index]
