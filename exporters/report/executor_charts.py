@@ -36,11 +36,12 @@ def _number(value: Any) -> float | None:
     return None if value is None else float(value)
 
 
-def executor_section(report: Any) -> dict[str, Any] | None:
-    """The data of the section (None when the executor analysis did not run or found nothing)."""
+def executor_section(report: Any) -> dict[str, Any]:
+    """The data of the section (``available`` false when the executor analysis did not run or
+    found no executor)."""
     result = report.result("executor") if hasattr(report, "result") else None
     if result is None:
-        return None
+        return {"available": False, "chains": [], "executors": [], "more": 0}
     chains = [
         {
             "name": c.name,
@@ -62,21 +63,22 @@ def executor_section(report: Any) -> dict[str, Any] | None:
                 "intervals": [(p, t, float(s), float(e)) for p, t, s, e in intervals],
             }
         )
-    return {"chains": chains, "executors": executors, "more": max(0, len(result.executors) - _MAX_EXECUTORS)}
+    more = max(0, len(result.executors) - _MAX_EXECUTORS)
+    return {"available": True, "chains": chains, "executors": executors, "more": more}
 
 
 def chain_chart(section: dict[str, Any]) -> str:
     """Horizontal bars: each chain's reaction time (= data age), its deadline as a dashed mark."""
     label = "Reaction time and data age of every cause-effect chain against its deadline"
-    chains = [c for c in section["chains"] if c["reaction_time"] is not None]
+    chains = section["chains"]
     if not chains:
-        return empty_chart(label, "No bounded cause-effect chain", "chart chart-chains")
+        return empty_chart(label, "No cause-effect chain", "chart chart-chains")
     top, row_h, bar_h, left, right = 30.0, 30.0, 18.0, 330.0, 150.0
-    longest = max(max(c["reaction_time"], c["deadline"] or 0) for c in chains) or 1.0
+    longest = max(max(c["reaction_time"] or 0, c["deadline"] or 0) for c in chains) or 1000.0
     step = nice_step(longest)
     axis = step * -(-longest // step)
     scale = (WIDTH - left - right) / axis
-    svg = Svg(WIDTH, top + row_h * len(chains) + 30, label, "chart chart-chains")
+    svg = Svg(WIDTH, max(top + row_h * len(chains) + 30, 90), label, "chart chart-chains")
     tick = 0.0
     while tick <= axis + 1e-9:
         x = left + tick * scale
@@ -94,8 +96,12 @@ def chain_chart(section: dict[str, Any]) -> str:
             tip=chain["name"],
         )
         svg.rect(left, y, axis * scale, bar_h, fill=TRACK, rx=3)
-        colour = STATUS["error"] if chain["met"] is False else (STATUS["ok"] if chain["met"] else "#4e79a7")
         value = chain["reaction_time"]
+        if value is None:
+            svg.text(left + 8, y + bar_h / 2 + 4, "no bound: an executor on the chain is overloaded", 12,
+                     bold=True, fill=STATUS["error"])  # fmt: skip
+            continue
+        colour = STATUS["error"] if chain["met"] is False else (STATUS["ok"] if chain["met"] else "#4e79a7")
         svg.rect(left, y, value * scale, bar_h, fill=colour, tip=f"reaction time = data age {value:g} us")
         text = f"{value / 1000:.1f} ms"
         if chain["deadline"] is not None:

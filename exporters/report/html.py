@@ -469,9 +469,8 @@ def render_report(
         "gantt": charts.gantt_chart(view["schedule"]),
     }
     executors = executor_section(report)
-    if executors is not None:
-        svgs["chains"] = chain_chart(executors)
-        svgs["executors"] = executor_gantt(executors)
+    svgs["chains"] = chain_chart(executors)
+    svgs["executors"] = executor_gantt(executors)
     template = _environment().get_template("report.html.j2")
     html = template.render(
         view=view,
