@@ -262,14 +262,43 @@ def polling_response_time(
       round): when the first bound is at most ``T_i``, no older job of ``i`` is pending when a
       job is released, so the job runs in the round after the one under way at its release.
       That round's remainder holds at most one job of every other callback, the next one at
-      most one job of every callback ordered before ``i``:
-      ``R = sum_{j != i} C_j + sum_{rank_j < rank_i} C_j + C_i + I(R)``.
+      most one job of every callback ordered before ``i``; and a callback ``j`` runs in the window
+      only jobs released less than its own bound ``R_j`` (the first bound) before the window
+      opens, so at most ``ceil((R + R_j) / T_j)`` of them (the arrival-curve cap of Blaß et al.'s
+      round-robin analysis, as the ``ros2::rr`` module of the ``response-time-analysis`` crate
+      implements it); a callback of equal rank counts as ordered before ``i``:
+      ``R = C_i + sum_{j != i} C_j * min(1 + [rank_j <= rank_i], ceil((R + R_j) / T_j)) + I(R)``.
     """
     me = callbacks[index]
-    others = [c for k, c in enumerate(callbacks) if k != index]
     window = busy_window(callbacks, interference, 0, horizon)
     if window is None:
         return None
+    worst = _casini_bound(callbacks, index, interference, window, horizon)
+    if worst is None or worst > me.period:
+        return worst
+    caps = []
+    for k, other in enumerate(callbacks):
+        if k == index:
+            continue
+        bound = _casini_bound(callbacks, k, interference, window, horizon)
+        if bound is None:
+            return worst
+        caps.append((other, 2 if other.rank <= me.rank else 1, bound))
+
+    def rounds(x: int) -> int:
+        work = sum(c.wcet * min(jobs, -(-(x + lag) // c.period)) for c, jobs, lag in caps)
+        return me.wcet + work + _preemption(interference, x)
+
+    two_rounds = _fixed_point(rounds, me.wcet, horizon)
+    return worst if two_rounds is None else min(worst, two_rounds)
+
+
+def _casini_bound(
+    callbacks: Sequence[CallbackTiming], index: int, interference: Interference, window: int, horizon: int
+) -> int | None:
+    """Casini et al.'s polling-point bound (eq. (6)) of ``callbacks[index]`` in the busy window."""
+    me = callbacks[index]
+    others = [c for k, c in enumerate(callbacks) if k != index]
 
     def own(offset: int) -> int:
         return rbf(me.period, me.wcet, offset + 1)
@@ -278,15 +307,7 @@ def polling_response_time(
         start = x - me.wcet + 1
         return own(offset) + sum(rbf(c.period, c.wcet, start) for c in others) + _preemption(interference, x)
 
-    worst = _worst_response(_offsets([(me.period, 0)], window), demand, own, horizon)
-    if worst is None:
-        return None
-    if worst <= me.period:
-        rounds = sum(c.wcet for c in others) + sum(c.wcet for c in others if c.rank < me.rank) + me.wcet
-        two_rounds = _fixed_point(lambda x: rounds + _preemption(interference, x), rounds, horizon)
-        if two_rounds is not None:
-            worst = min(worst, two_rounds)
-    return worst
+    return _worst_response(_offsets([(me.period, 0)], window), demand, own, horizon)
 
 
 def work_conserving_response_time(

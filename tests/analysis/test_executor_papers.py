@@ -1,12 +1,18 @@
 """Worked examples of the cited papers, with the numbers the papers (or their artefacts) give.
 
-Only Teper, Günzel, Ueter, von der Brüggen & Chen, "End-To-End Timing Analysis in ROS2", RTSS
-2022, gives a worked system with numbers that a test can reproduce from public text: its case
-study (Section VIII), whose system and numbers are those of the paper's artefact
-(github.com/HarunTeper/ros2-end-to-end, ``simulation_and_analysis/main.py``, experiment
-``case_study under SS``). The other papers' examples (Casini et al., ECRTS 2019, Figure 3; Blaß
-et al., RTSS 2021; Günzel et al., ECRTS 2023) are figures whose numbers are not in any public
-text or artefact we could read; see ``docs/executors.md``.
+* Teper, Günzel, Ueter, von der Brüggen & Chen, "End-To-End Timing Analysis in ROS2", RTSS
+  2022: its case study (Section VIII), whose system and numbers are those of the paper's
+  artefact (github.com/HarunTeper/ros2-end-to-end, ``simulation_and_analysis/main.py``,
+  experiment ``case_study under SS``).
+* Blaß, Casini, Bozhko & Brandenburg, RTSS 2021: the hand-checked example of its reference
+  implementation, the ``ros2::rr`` and ``ros2::bw`` modules of the ``response-time-analysis``
+  crate (github.com/brandenburg/response-time-analysis-rs, ``src/ros2/tests.rs``,
+  ``ros2_rr_subchain_analysis`` and ``ros2_bw_subchain_analysis``), whose numbers the test
+  comments there derive by hand.
+
+The other papers' worked examples (Casini et al., ECRTS 2019, Figure 3; Günzel et al., ECRTS
+2023) are figures whose numbers are in no public text or artefact we could read; see
+``docs/executors.md``.
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ from fractions import Fraction
 
 from rosaadl.analysis.cause_effect import ChainLink, chain_bound
 from rosaadl.analysis.executor_response import CallbackTiming, polling_response_time
+from rosaadl.analysis.executor_simulation import simulate_executor
 from rosaadl.analysis.executors import Callback
 
 # Teper et al., RTSS 2022, Section VIII (case study, under-utilised, all links subscriptions):
@@ -109,3 +116,38 @@ def test_teper_rtss2022_case_study_our_bound():
     assert bound.data_age == bound.reaction_time
     assert SIMULATED_REACTION_TIME <= bound.reaction_time <= PAPER_UPPER_BOUND
     assert bound.data_age >= SIMULATED_DATA_AGE
+
+
+# Blaß et al., RTSS 2021, through its reference implementation's hand-checked example: three
+# callbacks of one single-threaded executor on a dedicated processor, order unknown
+# (``PolledUnknownPrio``: equal ranks here), (T, C) = (100, 10), (10000, 230), (1000, 190).
+STARVATION_FREE = [
+    CallbackTiming("a", 100, 10, 100),
+    CallbackTiming("b", 10000, 230, 10000),
+    CallbackTiming("c", 1000, 190, 1000),
+]
+#: the round-robin analysis: "(before polling point) + (own polling point)"
+ROUND_ROBIN = (10 * 10 + (190 + 230 + 10), 10 + (10 + 190 + 230), 10 + (10 + 230 + 190))
+#: the busy-window analysis
+BUSY_WINDOW = (190 + 230 + 10, 3 * 10 + 190 + 230 - 1, 3 * 10 + 190 + 230 - 1)
+
+
+def test_blass_rtss2021_reference_example():
+    """Ours is the least of the two analyses for every callback: 430, 440, 440.
+
+    ``a`` (T = 100 < its bound): no starvation argument applies (a job of ``a`` may still be
+    pending when the next is released); Casini et al.'s eq. (6) gives one job of ``b`` and ``c``
+    and ``a``'s own: 430, the busy-window number (the round-robin one, 530, charges ten rounds
+    of ``a``). ``b`` and ``c``: the two-round bound with the arrival cap: in 440 time units ``c``
+    (resp. ``b``) releases one job, ``a`` runs at most once per round (twice): 20 + 190 + 230 =
+    440, the round-robin number (the busy-window one, 449, counts three jobs of ``a``). The
+    simulation reaches 439 for ``b`` and ``c`` (released one unit after ``a`` and the other one).
+    """
+    ours = tuple(polling_response_time(STARVATION_FREE, i) for i in range(3))
+    assert ROUND_ROBIN == (530, 440, 440) and BUSY_WINDOW == (430, 449, 449)
+    assert ours == tuple(map(min, ROUND_ROBIN, BUSY_WINDOW)) == (430, 440, 440)
+    a_releases = list(range(0, 2000, 100))
+    for late in (1, 2):
+        releases = [a_releases, [1 if late == 1 else 0], [1 if late == 2 else 0]]
+        worst = simulate_executor(STARVATION_FREE, "polling", releases).worst
+        assert worst[late] == 439 <= ours[late]
