@@ -270,17 +270,14 @@ def polling_response_time(
       ``R = C_i + sum_{j != i} C_j * min(1 + [rank_j <= rank_i], ceil((R + R_j) / T_j)) + I(R)``.
     """
     me = callbacks[index]
-    window = busy_window(callbacks, interference, 0, horizon)
-    if window is None:
-        return None
-    worst = _casini_bound(callbacks, index, interference, window, horizon)
+    worst = _casini_bound(callbacks, index, interference, horizon)
     if worst is None or worst > me.period:
         return worst
     caps = []
     for k, other in enumerate(callbacks):
         if k == index:
             continue
-        bound = _casini_bound(callbacks, k, interference, window, horizon)
+        bound = _casini_bound(callbacks, k, interference, horizon)
         if bound is None:
             return worst
         caps.append((other, 2 if other.rank <= me.rank else 1, bound))
@@ -294,20 +291,12 @@ def polling_response_time(
 
 
 def _casini_bound(
-    callbacks: Sequence[CallbackTiming], index: int, interference: Interference, window: int, horizon: int
+    callbacks: Sequence[CallbackTiming], index: int, interference: Interference, horizon: int
 ) -> int | None:
-    """Casini et al.'s polling-point bound (eq. (6)) of ``callbacks[index]`` in the busy window."""
-    me = callbacks[index]
-    others = [c for k, c in enumerate(callbacks) if k != index]
-
-    def own(offset: int) -> int:
-        return rbf(me.period, me.wcet, offset + 1)
-
-    def demand(offset: int, x: int) -> int:
-        start = x - me.wcet + 1
-        return own(offset) + sum(rbf(c.period, c.wcet, start) for c in others) + _preemption(interference, x)
-
-    return _worst_response(_offsets([(me.period, 0)], window), demand, own, horizon)
+    """Casini et al.'s polling-point bound (eq. (6)) of ``callbacks[index]``: the non-preemptive
+    fixed-priority equation with every other callback as urgent and no blocking."""
+    level = [c._replace(priority=0) for c in callbacks]
+    return np_fixed_priority_response_time(level, index, interference, horizon)
 
 
 def work_conserving_response_time(
