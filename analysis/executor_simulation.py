@@ -25,6 +25,11 @@ executor's processor in integer time, from event to event (releases, completions
 The executor owns its processor here (no other thread preempts it): what the simulation checks is
 the executor's dispatch rule, which the bounds of :mod:`rosaadl.analysis.executor_response` must
 cover. The trace of a run is the executor's Gantt chart in the HTML report.
+
+It is an engine of its own, not a dispatcher of :mod:`rosaadl.analysis.simulation_engine`: that
+engine's dispatch is a fixed per-job key in one ready heap per core, one running job per core,
+strictly periodic releases and jobs of exactly their capacity, none of which a polling snapshot,
+GIL time slices or sporadic releases fit (``docs/executors.md`` gives the details).
 """
 
 from __future__ import annotations
