@@ -90,9 +90,20 @@ def cli(ctx: click.Context, fmt: str, debug: bool, verbose: int, quiet: int) -> 
 
 
 def _register() -> None:
-    from rosaadl.cli import analyze, check, convert, demo, export, generate, import_, instantiate, library
+    from rosaadl.cli import (
+        analyze,
+        check,
+        convert,
+        demo,
+        export,
+        generate,
+        import_,
+        instantiate,
+        library,
+        run,
+    )
 
-    for module in (check, import_, convert, instantiate, analyze, export, generate, library, demo):
+    for module in (check, import_, convert, instantiate, analyze, export, generate, run, library, demo):
         cli.add_command(module.command)
 
 
