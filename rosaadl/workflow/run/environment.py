@@ -11,6 +11,13 @@ install folder (``--merge-install``) whose ``lib`` (the interface packages' type
 A run talks on a ROS domain of its own (``ROS_DOMAIN_ID`` derived from the process id, unless the
 caller's environment sets one) restricted to this host, so that runs side by side, or another
 ROS 2 system on the network, do not see each other's topics.
+
+The wheels' exported CMake targets (``<pkg>__rosidl_generator_py``) name the Python include
+folder of the machine they were built on (``/opt/python/cp311-cp311/include/python3.11``), which
+CMake refuses at generation when an interface package uses them (a ``.srv`` needs
+``service_msgs``'): the build injects :data:`CMAKE_FIXUP` (``CMAKE_PROJECT_INCLUDE``), which drops
+the include folders that do not exist from the imported targets once the package's
+``CMakeLists.txt`` has been read. The local Python's own include folder is the one rosidl adds.
 """
 
 from __future__ import annotations
@@ -26,6 +33,7 @@ from rosaadl.workflow.run.plan import RunError
 __all__ = [
     "ROS_MODULES",
     "BUILD_LOG",
+    "CMAKE_FIXUP",
     "ros_missing",
     "require_ros",
     "run_environment",
@@ -37,6 +45,32 @@ __all__ = [
 ROS_MODULES = ("rclpy", "rclpy.serialization", "colcon_core")
 #: The build's output, kept in the run folder.
 BUILD_LOG = "build.log"
+#: CMake run at each package's ``project()``: drop the missing include folders of imported targets.
+CMAKE_FIXUP = """\
+# Made by rosaadl run: the ROS 2 wheels' exported targets name include folders of the machine
+# they were built on; CMake refuses a target naming a folder that does not exist.
+function(_rosaadl_drop_missing_include_folders)
+  get_property(targets DIRECTORY "${CMAKE_SOURCE_DIR}" PROPERTY IMPORTED_TARGETS)
+  foreach(target IN LISTS targets)
+    get_target_property(folders ${target} INTERFACE_INCLUDE_DIRECTORIES)
+    if(folders)
+      set(kept "")
+      set(dropped FALSE)
+      foreach(folder IN LISTS folders)
+        if(folder MATCHES "^\\$<" OR EXISTS "${folder}")
+          list(APPEND kept "${folder}")
+        else()
+          set(dropped TRUE)
+        endif()
+      endforeach()
+      if(dropped)
+        set_target_properties(${target} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${kept}")
+      endif()
+    endif()
+  endforeach()
+endfunction()
+cmake_language(DEFER DIRECTORY "${CMAKE_SOURCE_DIR}" CALL _rosaadl_drop_missing_include_folders)
+"""
 _DOMAINS = 200  # ROS_DOMAIN_ID 1..200 (Fast DDS takes 0..232)
 _BUILD_TIMEOUT = 1800
 
@@ -103,6 +137,9 @@ def colcon_build(workspace: Path, *, jobs: int | None = None) -> Path:
     The output goes to ``workspace/build.log``; a failure is a :class:`RunError` quoting its end.
     """
     install = workspace / "install"
+    fixup = workspace / "build" / "rosaadl-cmake-fixup.cmake"
+    fixup.parent.mkdir(parents=True, exist_ok=True)
+    fixup.write_text(CMAKE_FIXUP, encoding="utf-8")
     command = [
         sys.executable,
         "-m",
@@ -121,6 +158,8 @@ def colcon_build(workspace: Path, *, jobs: int | None = None) -> Path:
         "console_direct+",
         "desktop_notification-",
         "status-",
+        "--cmake-args",
+        f"-DCMAKE_PROJECT_INCLUDE={fixup}",
     ]
     if jobs:
         command += ["--parallel-workers", str(jobs)]
