@@ -56,6 +56,7 @@ def _rate(value: float | None) -> str:
     help=f"The run folder (src, build, install, logs) [default: {DEFAULT_RUN_DIR}].",
 )
 @click.option("--no-realtime", is_flag=True, help="Do not apply the model's real-time priorities (chrt).")
+@click.option("--no-build", is_flag=True, help="Run the run folder's install as it is (no colcon build).")
 @click.option("--app-name", help="Name of the application's packages (default: the root type's name).")
 @click.option("--project", help="The project to take from a .webgmex archive.")
 @lenient_option()
@@ -68,6 +69,7 @@ def command(
     emulate: bool,
     out: Path | None,
     no_realtime: bool,
+    no_build: bool,
     app_name: str | None,
     project: str | None,
     lenient: bool,
@@ -104,7 +106,7 @@ def command(
     result = run_application(
         folder,
         plan,
-        RunOptions(duration=duration, emulate=emulate, realtime=not no_realtime),
+        RunOptions(duration=duration, emulate=emulate, realtime=not no_realtime, build=not no_build),
         progress=options.progress,
     )
     report.note([*result.errors, *result.warnings])

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from rosaadl.workflow.run.cores import Machine, map_cpus, node_prefix
+from rosaadl.workflow.run.cores import Machine, map_cpus, node_prefix, shared_cpus
 from rosaadl.workflow.run.plan import NodeLaunch, RunError
 from rosaadl.workflow.run.processes import (
     node_command,
@@ -102,6 +102,27 @@ def test_prefix_warns_for_a_missing_core_and_drops_a_forbidden_chrt():
     prefix, warnings = node_prefix(node, here)
     assert prefix == ["taskset", "-c", "0,1"]
     assert "SCHED_FIFO priority 60 cannot be set here" in warnings[-1]
+
+
+def test_real_time_is_not_applied_on_a_cpu_several_model_cores_share():
+    """Model cores 0, 1, 2 on a 2-CPU machine: core 2 joins core 0 on CPU 0, whose nodes lose their
+    SCHED_FIFO priority (the higher one would starve the other); CPU 1 keeps it."""
+    nodes = [
+        _launch("a", cpus=[0], policy="SCHED_FIFO", priority=55),
+        _launch("b", cpus=[1], policy="SCHED_FIFO", priority=60),
+        _launch("c", cpus=[2], policy="SCHED_FIFO", priority=50),
+    ]
+    here = Machine(cpus=[0, 1], realtime={"SCHED_FIFO": True}, taskset="taskset", chrt="chrt")
+    shared = shared_cpus(nodes, here)
+    assert shared == {0}
+    prefixes = [node_prefix(n, here, shared) for n in nodes]
+    assert [p for p, _ in prefixes] == [
+        ["taskset", "-c", "0"],
+        ["taskset", "-c", "1", "chrt", "-f", "60"],
+        ["taskset", "-c", "0"],
+    ]
+    assert "runs nodes of several cores of the model" in prefixes[0][1][0]
+    assert prefixes[1][1] == []
 
 
 def test_stop_sequence_reports_what_each_node_needed(tmp_path):

@@ -21,8 +21,9 @@ from conftest import corpus_dir
 from ros_runtime import runtime_marks
 
 from rosaadl.workflow.run import load_plan
-from rosaadl.workflow.run.cores import machine, node_prefix
+from rosaadl.workflow.run.cores import machine, node_prefix, shared_cpus
 from rosaadl.workflow.run.environment import run_environment
+from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor
 from rosaadl.workflow.run.processes import node_command, start_node, stop_nodes
 
 pytestmark = [*runtime_marks(), pytest.mark.slow]
@@ -124,44 +125,37 @@ def test_image_messages_carry_the_modelled_data_size(runs):
 
 def test_sigint_stops_every_node_with_exit_0_under_load(runs):
     """The built tracking application, its nodes started with the workload twin and stopped with
-    SIGINT once their ROS node is up, 20 times: every node exits 0 every time."""
+    SIGINT once they are up in the ROS graph, 20 times: every node exits 0 every time."""
     _, _, _, folder = runs("tracking")
     plan = load_plan(folder)
     install = folder / "install"
     env = run_environment(install)
     here = machine()
+    shared = shared_cpus(plan.nodes, here)
     logs = folder / "sigint"
     logs.mkdir(exist_ok=True)
+    names = {n.full_name for n in plan.nodes}
     failures = []
     for round_ in range(SIGINT_ROUNDS):
+        graph = logs / f"graph-{round_}.json"
+        monitor = start_monitor([], sorted(names), graph, env, folder)
         started = []
-        for node in plan.nodes:
-            prefix, _ = node_prefix(node, here)
-            command = node_command(node, install, prefix, [("rosaadl.emulate", True)])
-            started.append(start_node(node, command, env, logs, folder))
-        _wait_until_spinning(started)
-        stop_nodes(started)
+        try:
+            for node in plan.nodes:
+                prefix, _ = node_prefix(node, here, shared)
+                command = node_command(node, install, prefix, [("rosaadl.emulate", True)])
+                started.append(start_node(node, command, env, logs, folder))
+            deadline = time.monotonic() + 60
+            while time.monotonic() < deadline and not names <= nodes_up(graph):
+                time.sleep(0.05)
+            assert names <= nodes_up(graph), f"round {round_}: only {nodes_up(graph)} came up"
+            time.sleep(0.3)  # spinning, publishing, burning
+        finally:
+            stop_monitor(monitor)
+            stop_nodes(started)
         failures += [
             (round_, p.node.full_name, p.exit_code, p.stopped_by, p.log.read_text()[-1500:])
             for p in started
             if p.exit_code != 0 or p.stopped_by != "SIGINT"
         ]
     assert not failures, failures
-
-
-def _wait_until_spinning(started, timeout: float = 30.0) -> None:
-    """Until every node has its DDS participant (the threads Fast DDS starts with the node), then
-    a little more: SIGINT then reaches the node while it spins."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if all(_threads(p.process.pid) >= 15 for p in started if p.running()):
-            break
-        time.sleep(0.05)
-    time.sleep(0.5)
-
-
-def _threads(pid: int) -> int:
-    try:
-        return len(list(Path(f"/proc/{pid}/task").iterdir()))
-    except OSError:
-        return 0

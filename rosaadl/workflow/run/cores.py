@@ -9,7 +9,12 @@ On the machine the run happens on:
   order of the allowed CPUs), with a warning naming both;
 * ``chrt`` is kept when this process may set that policy (probed once, with the ``chrt`` of the
   machine running ``true``); otherwise it is dropped, with a warning: the node runs under the
-  default policy (``SCHED_OTHER``).
+  default policy (``SCHED_OTHER``);
+* ``chrt`` is dropped too, with a warning, for a node on a CPU that several cores of the model
+  were mapped onto (:func:`shared_cpus`): the model's priorities were chosen (and analysed) per
+  core, and between nodes of different cores sharing a CPU a higher ``SCHED_FIFO`` priority
+  starves the lower one (seen here: a node at priority 50 folded onto the CPU of one at 55 did not
+  get through its imports in 60 s).
 """
 
 from __future__ import annotations
@@ -21,7 +26,7 @@ from dataclasses import dataclass, field
 
 from rosaadl.workflow.run.plan import NodeLaunch
 
-__all__ = ["Machine", "machine", "map_cpus", "node_prefix"]
+__all__ = ["Machine", "machine", "map_cpus", "shared_cpus", "node_prefix"]
 
 _CHRT_FLAGS = {"SCHED_FIFO": "-f", "SCHED_RR": "-r"}
 
@@ -73,9 +78,24 @@ def map_cpus(cpus: list[int], available: list[int]) -> tuple[list[int], list[tup
     return sorted(used), moved
 
 
-def node_prefix(node: NodeLaunch, here: Machine) -> tuple[list[str], list[str]]:
-    """(the command prefix of ``node`` on this machine, the warnings it gave)."""
+def shared_cpus(nodes: list[NodeLaunch], here: Machine) -> set[int]:
+    """The CPUs of this machine that more than one core of the model is mapped onto."""
+    cores_on: dict[int, set[int]] = {}
+    for node in nodes:
+        for cpu in node.cpus or ():
+            target, _ = map_cpus([cpu], here.cpus)
+            for used in target:
+                cores_on.setdefault(used, set()).add(cpu)
+    return {cpu for cpu, cores in cores_on.items() if len(cores) > 1}
+
+
+def node_prefix(
+    node: NodeLaunch, here: Machine, shared: set[int] = frozenset()
+) -> tuple[list[str], list[str]]:
+    """(the command prefix of ``node`` on this machine, the warnings it gave); ``shared``: the
+    CPUs several model cores are mapped onto (:func:`shared_cpus`)."""
     prefix: list[str] = []
+    cpus: list[int] = []
     warnings: list[str] = []
     if node.cpus:
         cpus, moved = map_cpus(node.cpus, here.cpus)
@@ -89,7 +109,14 @@ def node_prefix(node: NodeLaunch, here: Machine) -> tuple[list[str], list[str]]:
         elif cpus:
             prefix += [here.taskset, "-c", _cpu_list(cpus)]
     flag = _CHRT_FLAGS.get(node.policy.upper())
-    if flag and node.priority is not None:
+    crowded = sorted(set(cpus) & set(shared))
+    if flag and node.priority is not None and crowded:
+        warnings.append(
+            f"node {node.full_name}: CPU {_cpu_list(crowded)} runs nodes of several cores of the model; "
+            f"its {node.policy.upper()} priority {node.priority} is not applied there (it would starve "
+            "the nodes of lower priority): it runs under the default scheduling"
+        )
+    elif flag and node.priority is not None:
         if here.chrt is not None and here.realtime.get(node.policy.upper()):
             prefix += [here.chrt, flag, str(node.priority)]
         else:

@@ -2,10 +2,12 @@
 
 It runs as a process of its own (``python -m rosaadl.workflow.run.monitor SPEC OUT``), in the
 run's ROS environment, so that rosaadl itself never loads ROS 2. ``SPEC`` is a JSON list of the
-topics (``name``, ``type``, ``reliable``); the monitor subscribes to each with ``raw=True`` (the
-serialized CDR bytes, not deserialized: what is counted is what travels), writes ``OUT.ready``
-once its subscriptions exist, and on SIGINT or SIGTERM writes ``OUT``: per topic the messages
-seen, the times of the first and last one, and the serialized bytes (total, smallest, largest).
+{"topics": [{"name", "type", "reliable"}], "nodes": [full names]}``; the monitor subscribes to
+each topic with ``raw=True`` (the serialized CDR bytes, not deserialized: what is counted is what
+travels), writes ``OUT.ready`` once its subscriptions exist, keeps ``OUT.up`` (the nodes of the
+model seen in the ROS graph so far) up to date, and on SIGINT or SIGTERM writes ``OUT``: per topic
+the messages seen, the times of the first and last one, and the serialized bytes (total, smallest,
+largest), and the nodes seen.
 
 :func:`topic_counts` is the measured rate: ``(messages - 1) / (last - first)``, the rate of the
 stream once it flows (start-up and discovery do not count against it).
@@ -17,14 +19,31 @@ import importlib
 import json
 import os
 import signal
+import subprocess
 import sys
 import time
 from pathlib import Path
 
-__all__ = ["READY_SUFFIX", "monitor_command", "topic_counts", "main"]
+from rosaadl.workflow.run.environment import tail
+from rosaadl.workflow.run.plan import RunError
+
+__all__ = [
+    "READY_SUFFIX",
+    "UP_SUFFIX",
+    "monitor_command",
+    "start_monitor",
+    "stop_monitor",
+    "topic_counts",
+    "nodes_up",
+    "main",
+]
 
 READY_SUFFIX = ".ready"
+UP_SUFFIX = ".up"
 _DEPTH = 50
+_GRAPH_SECONDS = 0.2
+_READY_SECONDS = 60.0
+_STOP_SECONDS = 10.0
 
 
 def monitor_command(spec: Path, out: Path) -> list[str]:
@@ -43,6 +62,77 @@ def topic_counts(entry: dict) -> tuple[int, float | None, float | None]:
     return messages, rate, size
 
 
+def nodes_up(out: Path) -> set[str]:
+    """The nodes of the model the monitor writing ``out`` has seen in the ROS graph so far."""
+    try:
+        return set(json.loads(Path(str(out) + UP_SUFFIX).read_text(encoding="utf-8")))
+    except (OSError, ValueError, TypeError):
+        return set()
+
+
+def _write(path: Path, data: object) -> None:
+    temporary = path.with_name(path.name + f".{os.getpid()}.tmp")
+    temporary.write_text(json.dumps(data, indent=1), encoding="utf-8")
+    os.replace(temporary, path)
+
+
+def start_monitor(
+    topics: list, nodes: list[str], counts_file: Path, env: dict[str, str], cwd: Path
+) -> subprocess.Popen:
+    """Start the monitor of ``topics`` (:class:`~rosaadl.workflow.run.plan.TopicPlan`) and
+    ``nodes`` (full names), writing into ``counts_file``; return once it listens (a
+    :class:`RunError` when it does not come up)."""
+    logs = counts_file.parent
+    spec = logs / "monitor-topics.json"
+    spec.write_text(
+        json.dumps(
+            {
+                "topics": [{"name": t.name, "type": t.type, "reliable": t.reliable} for t in topics],
+                "nodes": nodes,
+            },
+            indent=1,
+        ),
+        encoding="utf-8",
+    )
+    ready = Path(str(counts_file) + READY_SUFFIX)
+    for stale in (ready, counts_file, Path(str(counts_file) + UP_SUFFIX)):
+        stale.unlink(missing_ok=True)
+    log = logs / "monitor.log"
+    with open(log, "wb") as out:
+        monitor = subprocess.Popen(
+            monitor_command(spec, counts_file),
+            cwd=cwd,
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
+    deadline = time.monotonic() + _READY_SECONDS
+    try:
+        while not ready.exists():
+            if monitor.poll() is not None or time.monotonic() > deadline:
+                raise RunError(f"the topic monitor did not start:\n{tail(log)}", file=str(log))
+            time.sleep(0.02)
+    except BaseException:  # an interrupt too: no monitor is left behind
+        if monitor.poll() is None:
+            monitor.kill()
+            monitor.wait()
+        raise
+    return monitor
+
+
+def stop_monitor(monitor: subprocess.Popen) -> None:
+    """SIGINT to the monitor (it writes its counts), SIGKILL when it does not end."""
+    if monitor.poll() is None:
+        monitor.send_signal(signal.SIGINT)
+        try:
+            monitor.wait(timeout=_STOP_SECONDS)
+        except subprocess.TimeoutExpired:
+            monitor.kill()
+            monitor.wait()
+
+
 def _message_class(type_name: str):
     package, kind, name = type_name.split("/")
     return getattr(importlib.import_module(f"{package}.{kind}"), name)
@@ -55,7 +145,8 @@ def main(argv: list[str] | None = None) -> int:
     from rclpy.signals import SignalHandlerOptions
 
     spec_path, out_path = (Path(a) for a in (argv if argv is not None else sys.argv[1:]))
-    topics = json.loads(spec_path.read_text(encoding="utf-8"))
+    spec = json.loads(spec_path.read_text(encoding="utf-8"))
+    topics, expected = spec["topics"], set(spec["nodes"])
     stop = []
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.append(True))
@@ -96,16 +187,25 @@ def main(argv: list[str] | None = None) -> int:
             ),
         )
         node.create_subscription(cls, topic["name"], counter(entry), qos, raw=True)
+    up: dict[str, float] = {}
+    up_path = Path(str(out_path) + UP_SUFFIX)
+    _write(up_path, [])
     Path(str(out_path) + READY_SUFFIX).write_text("ready\n", encoding="utf-8")
+    looked = 0.0
     try:
         while not stop:
             rclpy.spin_once(node, timeout_sec=0.05)
+            if len(up) < len(expected) and time.monotonic() - looked > _GRAPH_SECONDS:
+                looked = time.monotonic()
+                seen = {f"{ns.rstrip('/')}/{name}" for name, ns in node.get_node_names_and_namespaces()}
+                new = (seen & expected) - up.keys()
+                if new:
+                    up.update(dict.fromkeys(new, looked))
+                    _write(up_path, sorted(up))
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
-        temporary = out_path.with_name(out_path.name + f".{os.getpid()}.tmp")
-        temporary.write_text(json.dumps(counts, indent=1), encoding="utf-8")
-        os.replace(temporary, out_path)
+        _write(out_path, {"topics": counts, "nodes": up})
     return 0
 
 

@@ -20,7 +20,6 @@ here or a real-time priority that cannot be set are warnings.
 from __future__ import annotations
 
 import json
-import signal
 import subprocess
 import time
 from collections.abc import Callable
@@ -31,9 +30,9 @@ from pyecore.ecore import EObject
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generate_workspace
-from rosaadl.workflow.run.cores import machine, node_prefix
+from rosaadl.workflow.run.cores import machine, node_prefix, shared_cpus
 from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
-from rosaadl.workflow.run.monitor import READY_SUFFIX, monitor_command, topic_counts
+from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
 from rosaadl.workflow.run.plan import RunError, RunPlan, TopicPlan, run_plan, save_plan
 from rosaadl.workflow.run.processes import GRACE_SECONDS, NodeProcess, node_command, start_node, stop_nodes
 
@@ -55,8 +54,6 @@ RATE_TOLERANCE = 0.10
 EMULATE_PARAMETER = "rosaadl.emulate"
 #: The folder of the run folder holding the nodes' and the monitor's output.
 RUN_LOGS = "run"
-_MONITOR_READY_SECONDS = 60.0
-_MONITOR_STOP_SECONDS = 10.0
 
 
 @dataclass(frozen=True)
@@ -67,7 +64,7 @@ class RunOptions:
     emulate: bool = False
     realtime: bool = True  # apply the model's real-time scheduling (chrt) where permitted
     build: bool = True
-    startup: float = 3.0  # seconds a node has to come up (part of ``duration``)
+    startup: float = 60.0  # seconds the nodes have to come up in the ROS graph (before ``duration``)
     grace: float = GRACE_SECONDS
 
 
@@ -181,6 +178,8 @@ def run_application(
         progress(f"built in {time.monotonic() - began:.1f} s")
     else:
         install = folder / "install"
+        if not (install / "lib").is_dir():
+            raise RunError("the run folder has not been built: run it without --no-build", file=str(folder))
     env = run_environment(install)
     logs = folder / RUN_LOGS
     logs.mkdir(exist_ok=True)
@@ -189,85 +188,71 @@ def run_application(
     processes: list[NodeProcess] = []
     counts_file = logs / "monitor.json"
     try:
-        monitor = _start_monitor(plan.topics, logs, counts_file, env, folder)
+        monitor = start_monitor(plan.topics, [n.full_name for n in plan.nodes], counts_file, env, folder)
         extra = [(EMULATE_PARAMETER, True)] if options.emulate else []
+        shared = shared_cpus(plan.nodes, here)
         for node in plan.nodes:
-            prefix, warnings = node_prefix(node, here)
+            prefix, warnings = node_prefix(node, here, shared)
             result.warnings.extend(_diagnostic("warning", w, node.path) for w in warnings)
             command = node_command(node, install, prefix, extra)
             processes.append(start_node(node, command, env, logs, folder))
             progress(f"started {node.full_name}" + (f" ({' '.join(prefix)})" if prefix else ""))
-        _run_for(processes, options, progress)
-        _stop_monitor(monitor)
+        _run_for(processes, counts_file, options, progress)
+        stop_monitor(monitor)
         progress(f"stopping {len(processes)} node(s)")
         stop_nodes(processes, grace=options.grace)
     finally:
         if monitor is not None and monitor.poll() is None:
-            _stop_monitor(monitor)
+            stop_monitor(monitor)
         stop_nodes([p for p in processes if p.running()], grace=options.grace)
-    _node_results(result, processes)
-    _topic_results(result, plan.topics, counts_file, options)
+    counts = _counts(result, counts_file)
+    for process in processes:
+        process.started = process.node.full_name in counts.get("nodes", {})
+    _node_results(result, processes, options)
+    _topic_results(result, plan.topics, counts.get("topics", {}), options)
     return result
 
 
-def _start_monitor(
-    topics: list[TopicPlan], logs: Path, counts_file: Path, env: dict[str, str], cwd: Path
-) -> subprocess.Popen:
-    spec = logs / "monitor-topics.json"
-    spec.write_text(
-        json.dumps([{"name": t.name, "type": t.type, "reliable": t.reliable} for t in topics], indent=1),
-        encoding="utf-8",
-    )
-    ready = Path(str(counts_file) + READY_SUFFIX)
-    for stale in (ready, counts_file):
-        stale.unlink(missing_ok=True)
-    log = logs / "monitor.log"
-    with open(log, "wb") as out:
-        monitor = subprocess.Popen(
-            monitor_command(spec, counts_file),
-            cwd=cwd,
-            env=env,
-            stdin=subprocess.DEVNULL,
-            stdout=out,
-            stderr=subprocess.STDOUT,
-            start_new_session=True,
+def _counts(result: RunResult, counts_file: Path) -> dict:
+    try:
+        counts = json.loads(counts_file.read_text(encoding="utf-8"))
+        if isinstance(counts, dict):
+            return counts
+    except (OSError, ValueError):
+        pass
+    result.errors.append(
+        _diagnostic(
+            "error", "the topic monitor wrote no counts", file=str(counts_file.parent / "monitor.log")
         )
-    deadline = time.monotonic() + _MONITOR_READY_SECONDS
-    while not ready.exists():
-        if monitor.poll() is not None or time.monotonic() > deadline:
-            if monitor.poll() is None:
-                monitor.kill()
-                monitor.wait()
-            raise RunError(f"the topic monitor did not start:\n{tail(log)}", file=str(log))
-        time.sleep(0.02)
-    return monitor
+    )
+    return {}
 
 
-def _stop_monitor(monitor: subprocess.Popen) -> None:
-    if monitor.poll() is None:
-        monitor.send_signal(signal.SIGINT)
-        try:
-            monitor.wait(timeout=_MONITOR_STOP_SECONDS)
-        except subprocess.TimeoutExpired:
-            monitor.kill()
-            monitor.wait()
-
-
-def _run_for(processes: list[NodeProcess], options: RunOptions, progress: Callable[[str], None]) -> None:
-    """Let the nodes run ``options.duration`` seconds; a node running after ``startup`` seconds
-    has started (one that ended before is recorded as it ended)."""
+def _run_for(
+    processes: list[NodeProcess], counts_file: Path, options: RunOptions, progress: Callable[[str], None]
+) -> None:
+    """Wait until every node is up in the ROS graph (at most ``options.startup`` seconds, less
+    when a node ends), then let them run ``options.duration`` seconds."""
+    names = {p.node.full_name for p in processes}
+    deadline = time.monotonic() + options.startup
     began = time.monotonic()
-    startup = min(options.startup, options.duration)
-    while time.monotonic() - began < startup and all(p.running() for p in processes):
-        time.sleep(0.02)
-    for process in processes:
-        process.started = process.running()
+    while time.monotonic() < deadline and all(p.running() for p in processes):
+        if names <= nodes_up(counts_file):
+            break
+        time.sleep(0.05)
+    up = nodes_up(counts_file)
+    missing = sorted(names - up)
+    progress(
+        f"{len(names & up)} of {len(names)} node(s) up in {time.monotonic() - began:.1f} s"
+        + (f" (not: {', '.join(missing)})" if missing else "")
+    )
     progress(f"running {options.duration:g} s" + (" with the workload twin" if options.emulate else ""))
-    while time.monotonic() - began < options.duration:
+    end = time.monotonic() + options.duration
+    while time.monotonic() < end:
         time.sleep(0.05)
 
 
-def _node_results(result: RunResult, processes: list[NodeProcess]) -> None:
+def _node_results(result: RunResult, processes: list[NodeProcess], options: RunOptions) -> None:
     for process in processes:
         node = process.node
         code = _exit_code(process.exit_code)
@@ -283,10 +268,15 @@ def _node_results(result: RunResult, processes: list[NodeProcess]) -> None:
         )
         result.warnings.extend(_diagnostic("warning", w, node.path) for w in process.warnings)
         if not process.started:
+            how = (
+                f"it exited with code {code}"
+                if process.stopped_by == ""
+                else f"it did not come up in the ROS graph within {options.startup:g} s"
+            )
             result.errors.append(
                 _diagnostic(
                     "error",
-                    f"node {node.full_name} did not start: it exited with code {code}:\n{tail(process.log)}",
+                    f"node {node.full_name} did not start: {how}:\n{tail(process.log)}",
                     node.path,
                     str(process.log),
                 )
@@ -311,18 +301,7 @@ def _node_results(result: RunResult, processes: list[NodeProcess]) -> None:
             )
 
 
-def _topic_results(
-    result: RunResult, topics: list[TopicPlan], counts_file: Path, options: RunOptions
-) -> None:
-    try:
-        counts = json.loads(counts_file.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        counts = {}
-        result.errors.append(
-            _diagnostic(
-                "error", "the topic monitor wrote no counts", file=str(counts_file.parent / "monitor.log")
-            )
-        )
+def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, options: RunOptions) -> None:
     for topic in topics:
         entry = counts.get(topic.name, {})
         messages, rate, size = topic_counts(entry)
