@@ -11,6 +11,7 @@ node of the tracking application 20 times while the workload twin loads the mach
 from __future__ import annotations
 
 import json
+import signal
 import subprocess
 import sys
 import time
@@ -136,26 +137,71 @@ def test_sigint_stops_every_node_with_exit_0_under_load(runs):
     logs.mkdir(exist_ok=True)
     names = {n.full_name for n in plan.nodes}
     failures = []
-    for round_ in range(SIGINT_ROUNDS):
-        graph = logs / f"graph-{round_}.json"
-        monitor = start_monitor([], sorted(names), graph, env, folder)
-        started = []
-        try:
-            for node in plan.nodes:
-                prefix, _ = node_prefix(node, here, shared)
-                command = node_command(node, install, prefix, [("rosaadl.emulate", True)])
-                started.append(start_node(node, command, env, logs, folder))
-            deadline = time.monotonic() + 60
-            while time.monotonic() < deadline and not names <= nodes_up(graph):
-                time.sleep(0.05)
-            assert names <= nodes_up(graph), f"round {round_}: only {nodes_up(graph)} came up"
-            time.sleep(0.3)  # spinning, publishing, burning
-        finally:
-            stop_monitor(monitor)
-            stop_nodes(started)
-        failures += [
-            (round_, p.node.full_name, p.exit_code, p.stopped_by, p.log.read_text()[-1500:])
-            for p in started
-            if p.exit_code != 0 or p.stopped_by != "SIGINT"
-        ]
+    graph = logs / "graph.json"
+    monitor = start_monitor([], sorted(names), graph, env, folder)
+    try:
+        for round_ in range(SIGINT_ROUNDS):
+            started = []
+            try:
+                for node in plan.nodes:
+                    prefix, _ = node_prefix(node, here, shared)
+                    command = node_command(node, install, prefix, [("rosaadl.emulate", True)])
+                    started.append(start_node(node, command, env, logs, folder))
+                _wait_for(lambda: names <= nodes_up(graph), f"round {round_}: the nodes did not come up")
+                time.sleep(0.3)  # spinning, publishing, burning
+            finally:
+                stop_nodes(started)
+            failures += [
+                (round_, p.node.full_name, p.exit_code, p.stopped_by, p.log.read_text()[-1500:])
+                for p in started
+                if p.exit_code != 0 or p.stopped_by != "SIGINT"
+            ]
+            _wait_for(lambda: not nodes_up(graph), f"round {round_}: the nodes stayed in the graph")
+    finally:
+        stop_monitor(monitor)
     assert not failures, failures
+
+
+def _wait_for(condition, message: str, timeout: float = 60.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not condition():
+        assert time.monotonic() < deadline, message
+        time.sleep(0.05)
+
+
+def test_ctrl_c_of_rosaadl_run_stops_the_nodes_and_exits_130(runs):
+    _, _, _, folder = runs("tracking")
+    process = subprocess.Popen(
+        [sys.executable, "-m", "rosaadl", "run", str(folder), "--no-build", "--duration", "300"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        lines = []
+        for line in process.stderr:
+            lines.append(line)
+            if line.startswith("running "):
+                break
+        assert lines and lines[-1].startswith("running "), "".join(lines)
+        process.send_signal(signal.SIGINT)
+        _, err = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    assert process.returncode == 130, "".join(lines) + err
+    install = str(folder / "install")
+    left = [pid for pid in _pids() if install in _cmdline(pid)]
+    assert not left, [_cmdline(pid) for pid in left]
+
+
+def _pids() -> list[int]:
+    return [int(p.name) for p in Path("/proc").iterdir() if p.name.isdigit()]
+
+
+def _cmdline(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+    except OSError:
+        return ""

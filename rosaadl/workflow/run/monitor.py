@@ -1,11 +1,11 @@
 """The topic monitor of a run: an rclpy node counting the messages of every topic of the model.
 
-It runs as a process of its own (``python -m rosaadl.workflow.run.monitor SPEC OUT``), in the
-run's ROS environment, so that rosaadl itself never loads ROS 2. ``SPEC`` is a JSON list of the
-{"topics": [{"name", "type", "reliable"}], "nodes": [full names]}``; the monitor subscribes to
+It runs as a process of its own (``python .../monitor.py SPEC OUT``: this file alone, so that it
+loads nothing of rosaadl), in the run's ROS environment, so that rosaadl itself never loads ROS 2.
+``SPEC`` is ``{"topics": [{"name", "type", "reliable"}], "nodes": [full names]}``; the monitor subscribes to
 each topic with ``raw=True`` (the serialized CDR bytes, not deserialized: what is counted is what
 travels), writes ``OUT.ready`` once its subscriptions exist, keeps ``OUT.up`` (the nodes of the
-model seen in the ROS graph so far) up to date, and on SIGINT or SIGTERM writes ``OUT``: per topic
+model in the ROS graph now) up to date, and on SIGINT or SIGTERM writes ``OUT``: per topic
 the messages seen, the times of the first and last one, and the serialized bytes (total, smallest,
 largest), and the nodes seen.
 
@@ -23,9 +23,6 @@ import subprocess
 import sys
 import time
 from pathlib import Path
-
-from rosaadl.workflow.run.environment import tail
-from rosaadl.workflow.run.plan import RunError
 
 __all__ = [
     "READY_SUFFIX",
@@ -48,7 +45,7 @@ _STOP_SECONDS = 10.0
 
 def monitor_command(spec: Path, out: Path) -> list[str]:
     """The command line of the monitor process."""
-    return [sys.executable, "-m", "rosaadl.workflow.run.monitor", str(spec), str(out)]
+    return [sys.executable, str(Path(__file__).resolve()), str(spec), str(out)]
 
 
 def topic_counts(entry: dict) -> tuple[int, float | None, float | None]:
@@ -63,7 +60,7 @@ def topic_counts(entry: dict) -> tuple[int, float | None, float | None]:
 
 
 def nodes_up(out: Path) -> set[str]:
-    """The nodes of the model the monitor writing ``out`` has seen in the ROS graph so far."""
+    """The nodes of the model the monitor writing ``out`` sees in the ROS graph now."""
     try:
         return set(json.loads(Path(str(out) + UP_SUFFIX).read_text(encoding="utf-8")))
     except (OSError, ValueError, TypeError):
@@ -82,6 +79,9 @@ def start_monitor(
     """Start the monitor of ``topics`` (:class:`~rosaadl.workflow.run.plan.TopicPlan`) and
     ``nodes`` (full names), writing into ``counts_file``; return once it listens (a
     :class:`RunError` when it does not come up)."""
+    from rosaadl.workflow.run.environment import tail
+    from rosaadl.workflow.run.plan import RunError
+
     logs = counts_file.parent
     spec = logs / "monitor-topics.json"
     spec.write_text(
@@ -187,7 +187,8 @@ def main(argv: list[str] | None = None) -> int:
             ),
         )
         node.create_subscription(cls, topic["name"], counter(entry), qos, raw=True)
-    up: dict[str, float] = {}
+    first_seen: dict[str, float] = {}
+    present: set[str] = set()
     up_path = Path(str(out_path) + UP_SUFFIX)
     _write(up_path, [])
     Path(str(out_path) + READY_SUFFIX).write_text("ready\n", encoding="utf-8")
@@ -195,19 +196,24 @@ def main(argv: list[str] | None = None) -> int:
     try:
         while not stop:
             rclpy.spin_once(node, timeout_sec=0.05)
-            if len(up) < len(expected) and time.monotonic() - looked > _GRAPH_SECONDS:
+            if time.monotonic() - looked > _GRAPH_SECONDS:
                 looked = time.monotonic()
-                seen = {f"{ns.rstrip('/')}/{name}" for name, ns in node.get_node_names_and_namespaces()}
-                new = (seen & expected) - up.keys()
-                if new:
-                    up.update(dict.fromkeys(new, looked))
-                    _write(up_path, sorted(up))
+                graph = {f"{ns.rstrip('/')}/{name}" for name, ns in node.get_node_names_and_namespaces()}
+                now = graph & expected
+                if now != present:
+                    present = now
+                    for name in now:
+                        first_seen.setdefault(name, looked)
+                    _write(up_path, sorted(now))
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
-        _write(out_path, {"topics": counts, "nodes": up})
+        _write(out_path, {"topics": counts, "nodes": first_seen})
     return 0
 
 
 if __name__ == "__main__":
+    # run as a file: its folder (plan.py, session.py, ...) must not shadow modules ROS 2 imports
+    _here = Path(__file__).resolve().parent
+    sys.path[:] = [p for p in sys.path if not p or Path(p).resolve() != _here]
     sys.exit(main())
