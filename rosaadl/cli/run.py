@@ -75,7 +75,7 @@ def command(
     lenient: bool,
 ) -> None:
     """Build and run the generated ROS 2 nodes for S seconds; report what each topic carried."""
-    from rosaadl.workflow.run import PLAN_FILE, RunOptions, load_plan, prepare_run, run_application
+    from rosaadl.workflow.run import PLAN_FILE, RunError, RunOptions, load_plan, prepare_run, run_application
 
     report = Report()
     if len(inputs) == 1 and inputs[0].is_dir() and (inputs[0] / PLAN_FILE).is_file():
@@ -103,12 +103,17 @@ def command(
             f"generated {len(generated.written)} file(s) into {folder / 'src'} "
             f"({len(plan.nodes)} node(s), {len(plan.topics)} topic(s))"
         )
-    result = run_application(
-        folder,
-        plan,
-        RunOptions(duration=duration, emulate=emulate, realtime=not no_realtime, build=not no_build),
-        progress=options.progress,
-    )
+    try:
+        result = run_application(
+            folder,
+            plan,
+            RunOptions(duration=duration, emulate=emulate, realtime=not no_realtime, build=not no_build),
+            progress=options.progress,
+        )
+    except RunError as exc:  # no runtime, a failed build, no monitor: the report says so
+        report.error(exc)
+        report.data.update({"run_folder": str(folder), "nodes": [], "topics": []})
+        sys.exit(report.emit(options))
     report.note([*result.errors, *result.warnings])
     for node in result.nodes:
         state = "started" if node.started else "did not start"

@@ -56,6 +56,9 @@ def test_missing_runtime_says_how_to_install_it_and_user_code_survives_regenerat
     assert main(args) == 1
     assert "self.frames = 42  # hand-written" in module.read_text()
     # and the run folder runs in place, without the model
-    assert main(["run", str(out), "--duration", "2"]) == 1
-    assert "the ROS 2 runtime is not installed" in capsys.readouterr().err
+    capsys.readouterr()
+    assert main(["run", str(out), "--duration", "2", "--format", "json"]) == 1
+    report = json.loads(capsys.readouterr().out)
+    assert report["ok"] is False and report["nodes"] == [] and report["topics"] == []
+    assert "the ROS 2 runtime is not installed" in report["errors"][0]["message"]
     assert main(["run", str(out), "--duration", "2", "-o", str(tmp_path / "other")]) == 2

@@ -205,3 +205,55 @@ def _cmdline(pid: int) -> str:
         return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
     except OSError:
         return ""
+
+
+def test_a_node_that_crashes_is_a_located_error(runs):
+    """A node whose code raises at start (its installed module edited): exit 1, the node and the
+    end of its log in the report, never a traceback of rosaadl."""
+    _, report, _, folder = runs("services")
+    name = report["nodes"][0]["name"].rsplit("/", 1)[1]
+    plan = load_plan(folder)
+    node = next(n for n in plan.nodes if n.name == name)
+    site = next((folder / "install" / "lib").glob("python3*/site-packages"))
+    entry_points = next(site.glob(f"{node.package}-*.egg-info/entry_points.txt")).read_text()
+    target = next(
+        line.split("=", 1)[1].strip()
+        for line in entry_points.splitlines()
+        if line.split("=")[0].strip() == node.executable
+    )
+    module = site / (target.split(":")[0].replace(".", "/") + ".py")
+    text = module.read_text()
+    crash = "def main(args=None):\n    raise SystemExit('boom: broken on purpose')\n"
+    module.write_text(text.replace("def main(args=None):\n", crash, 1))
+    try:
+        done = _rosaadl("run", str(folder), "--no-build", "--duration", "2", "--format", "json", timeout=300)
+    finally:
+        module.write_text(text)
+    assert done.returncode == 1, done.stderr[-3000:]
+    assert "Traceback" not in done.stderr
+    again = json.loads(done.stdout)
+    crashed = next(n for n in again["nodes"] if n["name"] == node.full_name)
+    assert (crashed["started"], crashed["exit_code"]) == (False, 1)
+    error = next(e for e in again["errors"] if node.full_name in e["message"])
+    assert "did not start: it exited with code 1" in error["message"] and "boom" in error["message"]
+
+
+def test_a_failed_build_is_a_located_error(runs):
+    """A message definition colcon cannot build: exit 1, the end of the build log in the report."""
+    _, _, _, folder = runs("messages")
+    broken = next((folder / "src").glob("*_interfaces/msg")) / "Broken.msg"
+    cmake = broken.parent.parent / "CMakeLists.txt"
+    text = cmake.read_text()
+    cmake.write_text(text.replace('"msg/', '"msg/Broken.msg"\n  "msg/', 1))
+    broken.write_text("not a field definition at all\n")
+    try:
+        done = _rosaadl("run", str(folder), "--duration", "2", "--format", "json", timeout=600)
+    finally:
+        broken.unlink()
+        cmake.write_text(text)
+    assert done.returncode == 1, done.stderr[-3000:]
+    assert "Traceback" not in done.stderr
+    report = json.loads(done.stdout)
+    assert report["ok"] is False and report["nodes"] == []
+    assert "colcon build failed" in report["errors"][0]["message"]
+    assert report["errors"][0]["file"] == str(folder / "src")
