@@ -170,7 +170,7 @@ def test_emulated_nodes_burn_their_cet_and_publish_their_data_size(built, tmp_pa
     Without the launch prefixes: ``taskset -c 0`` would pin the tracker to one core of a 2-core
     machine that it overloads here (37 ms of CPU per 50 ms image, plus taking 921 kB images in
     Python), and SCHED_FIFO busy loops starve the rest of a shared machine; the prefixes and the
-    priorities are checked on their own below."""
+    priorities are checked on their own (below, and in ``test_rclpy_twin``)."""
     nodes = {n["name"]: n for n in launch_nodes(built / "src/tracking_bringup/launch/tracking.launch.py")}
     tracker, camera = nodes["ocv_color_tracking"], nodes["usb_cam"]
     cet_ms = tracker["parameters"][0]["image_tracker.cet_max"] * 1e3
