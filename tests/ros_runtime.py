@@ -12,11 +12,14 @@ interface libraries, ``PYTHONPATH`` of its packages).
 from __future__ import annotations
 
 import functools
+import importlib.util
 import os
 import platform
+import shlex
 import shutil
 import subprocess
 import sys
+import types
 from pathlib import Path
 
 import pytest
@@ -28,6 +31,8 @@ __all__ = [
     "workspace_environment",
     "colcon_build",
     "generate_demo_workspace",
+    "launch_nodes",
+    "node_command",
 ]
 
 #: What the runtime tests import from the runtime.
@@ -67,12 +72,12 @@ def runtime_marks() -> list[pytest.MarkDecorator]:
 
 def runtime_environment(domain: int | None = None) -> dict[str, str]:
     """The environment of the runtime: this prefix's tools first on PATH, the ament/CMake prefix,
-    DDS discovery on this machine only, in a domain of its own (other test runs may share the
-    machine)."""
+    DDS discovery on this machine only, in a domain of its own (102..201, from the process id:
+    other test runs and ``rosaadl run`` may share the machine, mostly in the low domains)."""
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     env["PATH"] = os.pathsep.join([str(Path(sys.prefix) / "bin"), env.get("PATH", "")])
     env["AMENT_PREFIX_PATH"] = env["CMAKE_PREFIX_PATH"] = sys.prefix
-    env["ROS_DOMAIN_ID"] = str(domain if domain is not None else 1 + os.getpid() % 100)
+    env["ROS_DOMAIN_ID"] = str(domain if domain is not None else 102 + os.getpid() % 100)
     env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
     env["RCUTILS_COLORIZED_OUTPUT"] = "0"
     env["PYTHONUNBUFFERED"] = "1"
@@ -118,3 +123,59 @@ def generate_demo_workspace(out: Path) -> Path:
     )
     assert done.returncode == 0, done.stderr[-3000:]
     return out / "ros2_ws"
+
+
+def launch_nodes(path: Path) -> list[dict[str, object]]:
+    """The ``Node`` actions of a generated launch file as keyword dicts, its prefixes fitted to this
+    machine by the file itself (``launch`` and ``launch_ros`` are stubbed: they have no wheel)."""
+    launch = types.ModuleType("launch")
+    launch.LaunchDescription = list
+    actions = types.ModuleType("launch_ros.actions")
+    actions.Node = lambda **kwargs: kwargs
+    launch_ros = types.ModuleType("launch_ros")
+    launch_ros.actions = actions
+    stubs = {"launch": launch, "launch_ros": launch_ros, "launch_ros.actions": actions}
+    saved = {name: sys.modules.get(name) for name in stubs}
+    sys.modules.update(stubs)
+    try:
+        spec = importlib.util.spec_from_file_location(f"launch_{path.stem.replace('.', '_')}", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return list(module.generate_launch_description())
+    finally:
+        for name, module in saved.items():
+            if module is None:
+                sys.modules.pop(name, None)
+            else:
+                sys.modules[name] = module
+
+
+def _parameter_text(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+def node_command(
+    root: Path, node: dict[str, object], *, prefix: str = "all", **parameters: object
+) -> list[str]:
+    """The command line that starts ``node`` (a :func:`launch_nodes` dict) of the built workspace
+    ``root`` as ``ros2 launch`` would: its prefix (``prefix``: ``all``, ``chrt`` for its
+    scheduling without its CPU affinity, or ``none``), name, namespace, parameters
+    (``parameters`` added or overriding; ``__`` in a name stands for ``.``) and remappings."""
+    package, executable = str(node["package"]), str(node["executable"])
+    words = shlex.split(str(node.get("prefix") or "")) if prefix != "none" else []
+    if prefix == "chrt":
+        words = words[words.index("chrt") :] if "chrt" in words else []
+    command = list(words)
+    command += [str(root / "install" / package / "lib" / package / executable), "--ros-args"]
+    command += ["-r", f"__node:={node['name']}"]
+    if node.get("namespace"):
+        command += ["-r", f"__ns:=/{str(node['namespace']).strip('/')}"]
+    values = dict(node["parameters"][0]) if node.get("parameters") else {}
+    values.update({name.replace("__", "."): value for name, value in parameters.items()})
+    for name, value in values.items():
+        command += ["-p", f"{name}:={_parameter_text(value)}"]
+    for local, target in node.get("remappings") or ():
+        command += ["-r", f"{local}:={target}"]
+    return command
