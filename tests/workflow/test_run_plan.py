@@ -12,6 +12,7 @@ from rosaadl.exporters.rclpy import WorkspacePlan
 from rosaadl.exporters.rclpy.deployment import NodeInstance
 from rosaadl.exporters.rclpy.messages import InterfaceType
 from rosaadl.exporters.rclpy.nodes import NodeClass, PortPlan, QoS, ServicePlan, ThreadPlan
+from rosaadl.exporters.rclpy.twin import assign_twin_outputs
 from rosaadl.workflow.run import PLAN_FILE, RunError, load_plan, run_plan
 from rosaadl.workflow.run.plan import resolve_name, save_plan
 
@@ -58,6 +59,7 @@ def _node(name: str, *threads: ThreadPlan, namespace: str = "", periods=(), rema
         key=name,
         threads=list(threads),
     )
+    assign_twin_outputs(cls)
     parameters = [(f"{ident}.period", period) for ident, period in periods]
     return NodeInstance(
         process=_PROCESS,
@@ -128,7 +130,15 @@ def test_rates_follow_the_dispatching_ports():
         _thread("c", None, _port("ext", "in", triggers=True), _port("never", "out")),
         remap=[("x", "/x"), ("x2", "/x"), ("y", "/y"), ("y2", "/y"), ("ext", "/outside")],
     )
-    plan = run_plan(_plan(source, relay, server, loop))
+    component = _node(  # a ROSMOD component: its publisher is its own, its timer thread sends it
+        "component",
+        _thread("own", None, _port("pub", "out")),
+        _thread("timer", "periodic"),
+        periods=[("timer", 0.5)],
+    )
+    component.cls.threads[0].container = True
+    assign_twin_outputs(component.cls)
+    plan = run_plan(_plan(source, relay, server, loop, component))
     assert _rates(plan) == {
         "/raw": 20.0,
         "/robot/cooked": 20.0,
@@ -138,12 +148,13 @@ def test_rates_follow_the_dispatching_ports():
         "/y": None,
         "/outside": None,
         "/never": None,
+        "/pub": 2.0,
     }
     topics = {t.name: t for t in plan.topics}
     assert topics["/raw"].publishers == ["/source"]
     assert topics["/raw"].subscribers == ["/robot/relay"]
     assert topics["/outside"].publishers == [] and topics["/never"].publishers == ["/loop"]
-    assert [n.full_name for n in plan.nodes] == ["/source", "/robot/relay", "/server", "/loop"]
+    assert [n.full_name for n in plan.nodes] == ["/source", "/robot/relay", "/server", "/loop", "/component"]
     relay_launch = plan.nodes[1]
     assert (relay_launch.cpus, relay_launch.policy, relay_launch.priority) == ([3], "SCHED_FIFO", 40)
 

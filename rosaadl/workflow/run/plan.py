@@ -7,12 +7,14 @@ are the ones the nodes' ports use, each resolved as ROS 2 resolves it (a remappe
 launch file's target; a relative one is put under the node's namespace; ``~/`` under the node).
 
 The *modelled rate* of a topic is the sum of the dispatch rates of the threads publishing on it
-(each dispatch of a thread publishes every out port once, as the generated workload twin does):
+(each dispatch of a thread publishes once on every port the generated workload twin sends from
+it: its own out ports, and those of its thread group or process it is the sender of, see
+:mod:`rosaadl.exporters.rclpy.twin`):
 a thread on a periodic timer (``Periodic``, ``Timed``, ``Hybrid``) is dispatched ``1 / period``
 times a second (its ``<thread>.period`` parameter), plus once per message on each in port that
 dispatches it (``Sporadic``, ``Aperiodic``, and the event ports of ``Timed``/``Hybrid``). The
 rates are propagated along the topics until they settle; a rate that depends on a service
-call, on a thread with no period, or on a cycle of topics is unknown (``None``). A topic no node
+call, on a timer thread with no period, or on a cycle of topics is unknown (``None``). A topic no node
 of the model publishes on is an input from outside the model: its rate is unknown.
 
 The plan is saved in the run folder (:data:`PLAN_FILE`), so that a run folder can be run again
@@ -27,10 +29,8 @@ from pathlib import Path
 
 from rosaadl.errors import RosaadlError
 from rosaadl.exporters.rclpy import WorkspacePlan
-from rosaadl.exporters.rclpy.deployment import NodeInstance, find_feature
-from rosaadl.exporters.rclpy.instances import prop
+from rosaadl.exporters.rclpy.deployment import NodeInstance
 from rosaadl.fileio import atomic_write_text, loads_bounded
-from rosaadl.workflow.library_nodes import bytes_of
 
 __all__ = [
     "PLAN_FILE",
@@ -156,17 +156,17 @@ def run_plan(plan: WorkspacePlan) -> RunPlan:
                     topic.reliable = topic.reliable and port.qos.reliability == "RELIABLE"
                     if full not in topic.publishers:
                         topic.publishers.append(full)
-                    if not thread.container:
-                        out_ends.append((name, node, thread.ident))
-                    feature = find_feature(node.process, port.rel_path)
-                    size = bytes_of(prop(feature, "Data_Size")) if feature is not None else None
-                    if size is not None:
-                        topic.model_bytes = max(topic.model_bytes or 0, size)
+                    if port.data_size is not None:
+                        topic.model_bytes = max(topic.model_bytes or 0, port.data_size)
                 else:
                     if full not in topic.subscribers:
                         topic.subscribers.append(full)
-                    if port.triggers and not thread.container:
+                    if port.triggers and thread.dispatches:
                         triggers.setdefault((id(node), thread.ident), []).append(name)
+            if thread.dispatches:  # what its emulated dispatch publishes (its ports, its group's)
+                for port in thread.twin_outputs:
+                    name = resolve_name(remapped.get(port.local, port.local), node.namespace, node.node_name)
+                    out_ends.append((name, node, thread.ident))
     rates = _settled_rates(plan, topics, out_ends, triggers)
     for name, topic in topics.items():
         topic.model_rate_hz = rates.get(name)
@@ -181,7 +181,7 @@ def _settled_rates(
     triggers: dict[tuple[int, str], list[str]],
 ) -> dict[str, float | None]:
     """Topic rates propagated through the dispatching in ports until they no longer change."""
-    threads = {(id(n), t.ident): (n, t) for n in plan.nodes for t in n.cls.threads if not t.container}
+    threads = {(id(n), t.ident): (n, t) for n in plan.nodes for t in n.cls.threads if t.dispatches}
     rates: dict[str, float | None] = {name: None for name in topics}
     published = {name for name, _, _ in out_ends}
     for _ in range(_SETTLE_PASSES):
