@@ -33,8 +33,11 @@ ros: $(ROS_STAMP)
 demo: $(STAMP)
 	$(BIN)/rosaadl demo -o $(DEMO_OUT)
 
+# The suite on every core (pytest-xdist, a test file per worker), then the tests that run ROS 2
+# nodes and measure their rates, alone so that other tests do not take their CPU.
 test: $(ROS_STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n auto --dist loadfile -m "not ros_runtime"
+	$(BIN)/python -m pytest -q -m ros_runtime
 
 bench: $(STAMP)
 	$(BIN)/python -m benchmarks $(BENCH)

@@ -104,7 +104,8 @@ def _register() -> None:
         run,
     )
 
-    for module in (check, import_, convert, instantiate, analyze, deploy, export, generate, run, library, demo):
+    verbs = (check, import_, convert, instantiate, analyze, deploy, export, generate, run, library, demo)
+    for module in verbs:
         cli.add_command(module.command)
 
 

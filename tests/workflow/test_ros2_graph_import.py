@@ -118,6 +118,7 @@ def _ports(component) -> list[tuple[str, str, str]]:
 
 
 @pytest.mark.slow
+@pytest.mark.ros_runtime  # measured rates: run with the other runtime tests, on a quiet machine
 def test_live_graph_nodes_topics_services_rates_and_sizes(graph, tmp_path):
     warnings: list = []
     started = time.monotonic()
