@@ -16,7 +16,10 @@ first system mode:
   under the core's ``Scheduling_Protocol`` (preemptive rate monotonic when it has none).
 * **candidates**: ``Allowed_Processor_Binding`` of the unit (or of the process holding a thread),
   a processor or system standing for the cores inside it, intersected with the caller's
-  ``allowed``; the **current binding** from ``Actual_Processor_Binding`` (the moves objective).
+  ``allowed`` and with the board of every device the unit is connected to (the **pins**,
+  :func:`~rosaadl.analysis.deployment_links.device_pins`; the ``Allowed_Processor_Binding``
+  restrictions are listed as pins too); the **current binding** from ``Actual_Processor_Binding``
+  (the moves objective).
 * **boards**: a core's board is its nearest enclosing system below the root, else its outermost
   enclosing processor, else the core itself. Units on different boards talk over the bus.
 * **memory**: a unit's RAM (Data + Heap + Stack size of its subtree, else ``SEI::RAMBudget``)
@@ -25,6 +28,9 @@ first system mode:
   rate at the source, as the bus load analysis computes a connection's actual bandwidth, without
   protocol overhead); it loads the bus when the two units are on different boards, against the
   smallest ``SEI::BandWidthCapacity`` of the model's buses (one network carries every topic).
+* **chains**: the executor analysis's cause-effect chains, each as a fixed part plus the
+  transmission of its topics that cross boards (:mod:`rosaadl.analysis.deployment_links`);
+  :meth:`DeploymentProblem.longest_chain` gives the longest under a binding.
 """
 
 from __future__ import annotations

@@ -4,9 +4,18 @@ One Boolean per (unit, candidate core), exactly one per unit. Constraints: each 
 100 % loaded; each board's memory; the bus capacity against the traffic of unit pairs on
 different boards; per-core schedulability. Objectives, lexicographic (each stage minimises one
 with the ones before held at the values found): the highest core load, the total bus load
-(KByte/s crossing boards), the number of units moved from their current
-``Actual_Processor_Binding``. The longest chain latency is not an objective: rosaadl has no
-executor analysis to give a chain's latency under a binding yet.
+(KByte/s crossing boards), the longest chain latency, the number of units moved from their
+current ``Actual_Processor_Binding``.
+
+**Chain latency.** Each cause-effect chain of the executor analysis costs its fixed part (timer
+periods + execution times) plus the transmission of each of its topics whose units are on
+different boards (:mod:`rosaadl.analysis.deployment_links`): linear in the "on different boards"
+Booleans the bus objective has (``y >= x[u,b] - x[v,b]`` per board), so ``L >= chain`` for every
+chain and ``L`` minimised is the longest chain exactly. This is the executor analysis's reaction
+time of the chain (crossing topics bound to the solver's bus) less the waiting of its callbacks
+in their executors and on their cores, which the solver does not model. Microseconds are scaled
+like the loads (exact up to 10^9, else by 1000: nanoseconds, rounded down). The stage is skipped
+when no binding can change the value (no chain, one board, or no topic between units).
 
 **Integers.** CP-SAT works on integers. Loads are exact fractions (Σ CET / Period); they are
 scaled by the least common multiple of their denominators when it is at most 10^9, so the model
@@ -240,6 +249,7 @@ class _Model:
         shared with the bus objective)."""
         p, m = self.problem, self.model
         self.latency_varies = False
+        self.latency_low = 0
         if not p.chains:
             self.latency = m.new_constant(0)
             return
@@ -264,6 +274,7 @@ class _Model:
         low = max(fixed for fixed, _terms in expressions)
         high = max(fixed + sum(w for w, _y in terms) for fixed, terms in expressions)
         self.latency_varies = high > low
+        self.latency_low = low
         self.latency = m.new_int_var(low, high, "longest_chain")
         for fixed, terms in expressions:
             if terms:
@@ -550,6 +561,8 @@ def _solved(
         if exact is None:  # no chain
             objectives.append(Objective(name, None, None, unit, NO_CHAIN_NOTE))
             continue
+        if stage == 2 and state.latency_low > 0:  # no chain is shorter than its fixed part
+            bound = max(bound, state.latency_low)
         if bound < 0:
             bound_value: Fraction | int | None = None
         else:
