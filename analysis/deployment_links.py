@@ -80,7 +80,8 @@ class Pin:
 
 def unit_finder(root: Any, unit_objs: Sequence[Any]) -> Callable[[Any], list[int]]:
     """A function from a feature or component instance to the units it belongs to: the unit
-    holding it, else (a port of a process searched thread by thread) the units inside it."""
+    holding it, else (a port of a process or thread group searched thread by thread) the units
+    inside that component."""
     owner = {id(obj): u for u, obj in enumerate(unit_objs)}
     paths = [instance_path(obj) for obj in unit_objs]
 
@@ -94,7 +95,7 @@ def unit_finder(root: Any, unit_objs: Sequence[Any]) -> Callable[[Any], list[int
         holder = end
         while holder is not None and not hasattr(holder, "componentInstances"):
             holder = holder.eContainer()
-        if holder is None or holder is root:
+        if holder is None or category_of(holder) not in ("process", "threadGroup", "thread group"):
             return []
         prefix = instance_path(holder) + "."
         return [u for u, p in enumerate(paths) if p.startswith(prefix)]

@@ -142,3 +142,21 @@ def test_a_device_outside_every_board_pins_nothing():
     _wire(root, sensor, driver)
     problem = deployment_problem(root)
     assert problem.allowed == [[0, 1]] and problem.pins == []
+
+
+def test_thread_granularity_pins_the_threads_behind_a_process_port():
+    driver = process("driver", thread("t1", 1000, 100), thread("t2", 1000, 100))
+    boards = [_board("left", [core("c0")]), _board("right", [core("c0")])]
+    camera = _device("camera")
+    boards[0].componentInstances.append(camera)
+    root = _boards_system(boards, [driver])
+    out = new("FeatureInstance", name="data", feature="data", category="data port", direction="out")
+    camera.featureInstances.append(out)
+    into = new("FeatureInstance", name="image", feature="image", category="data port", direction="in")
+    driver.featureInstances.append(into)
+    root.connectionInstances.append(
+        new("ConnectionInstance", name="camera->driver", kind="portConnection", source=out, destination=into)
+    )
+    problem = deployment_problem(root, granularity="thread")
+    assert problem.allowed == [[0], [0]]
+    assert [(p.unit, p.board) for p in problem.pins] == [(0, "r_i_Instance.left"), (1, "r_i_Instance.left")]
