@@ -3,7 +3,9 @@
 :func:`explain_infeasibility` looks, in this order, for a cause one can read off the problem:
 
 1. a unit with no candidate core (``Allowed_Processor_Binding`` or the caller's list leaves it
-   none, or it demands MIPS of cores that give none);
+   none, or it demands MIPS of cores that give none); a unit pinned to two boards (by the
+   devices it talks to, or a device and ``Allowed_Processor_Binding``): "node.driver is pinned
+   to left by device left.camera and to right by device right.lidar: no core is both";
 2. a unit that alone overloads every core it may take: "node.tracker at 30 Hz needs 111.1 % of
    any Exynos_5422::ARM_A15 core" (per core classifier, the least load there);
 3. a unit not schedulable alone on any core it fits;
@@ -69,6 +71,15 @@ def _single_unit(problem: DeploymentProblem) -> list[Infeasibility]:
     for u, unit in enumerate(problem.units):
         name = _short(problem, unit.path)
         if not problem.allowed[u]:
+            pins = [p for p in problem.pins if p.unit == u]
+            if any(p.device for p in pins):
+                held = " and ".join(
+                    f"to {_short(problem, p.board)} by "
+                    + (f"device {_short(problem, p.device)}" if p.device else "Allowed_Processor_Binding")
+                    for p in pins
+                )
+                out.append(Infeasibility("pinned", f"{name} is pinned {held}: no core is both", unit.path))
+                continue
             out.append(
                 Infeasibility(
                     "candidates",

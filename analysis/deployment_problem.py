@@ -16,7 +16,10 @@ first system mode:
   under the core's ``Scheduling_Protocol`` (preemptive rate monotonic when it has none).
 * **candidates**: ``Allowed_Processor_Binding`` of the unit (or of the process holding a thread),
   a processor or system standing for the cores inside it, intersected with the caller's
-  ``allowed``; the **current binding** from ``Actual_Processor_Binding`` (the moves objective).
+  ``allowed`` and with the board of every device the unit is connected to (the **pins**,
+  :func:`~rosaadl.analysis.deployment_links.device_pins`; the ``Allowed_Processor_Binding``
+  restrictions are listed as pins too); the **current binding** from ``Actual_Processor_Binding``
+  (the moves objective).
 * **boards**: a core's board is its nearest enclosing system below the root, else its outermost
   enclosing processor, else the core itself. Units on different boards talk over the bus.
 * **memory**: a unit's RAM (Data + Heap + Stack size of its subtree, else ``SEI::RAMBudget``)
@@ -25,6 +28,9 @@ first system mode:
   rate at the source, as the bus load analysis computes a connection's actual bandwidth, without
   protocol overhead); it loads the bus when the two units are on different boards, against the
   smallest ``SEI::BandWidthCapacity`` of the model's buses (one network carries every topic).
+* **chains**: the executor analysis's cause-effect chains, each as a fixed part plus the
+  transmission of its topics that cross boards (:mod:`rosaadl.analysis.deployment_links`);
+  :meth:`DeploymentProblem.longest_chain` gives the longest under a binding.
 """
 
 from __future__ import annotations
@@ -36,6 +42,7 @@ from typing import Any
 
 from rosaadl.analysis.busload import data_size_kbyte, message_rate
 from rosaadl.analysis.demand import ResourceDemand
+from rosaadl.analysis.deployment_links import ChainCost, Pin, chain_costs, device_pins
 from rosaadl.analysis.instance_values import PropertyReader, category_of, instance_root, system_modes
 from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
 from rosaadl.errors import Diagnostic, Location, ModelError
@@ -99,6 +106,7 @@ class Evaluation:
     bus_kbyteps: Fraction
     moves: int
     violations: tuple[str, ...]
+    latency_us: Fraction | None = None  #: the longest chain's latency (None: the model has no chain)
 
     @property
     def max_load(self) -> Fraction:
@@ -124,6 +132,8 @@ class DeploymentProblem:
     traffic: list[tuple[int, int, Fraction]] = field(default_factory=list)
     bus_capacity: Fraction | None = None
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    chains: list[ChainCost] = field(default_factory=list)
+    pins: list[Pin] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         if self.times is None:
@@ -272,7 +282,17 @@ class DeploymentProblem:
         moves = sum(
             1 for u, c in enumerate(assignment) if self.current[u] and c >= 0 and c not in self.current[u]
         )
-        return Evaluation(loads, bus, moves, tuple(violations))
+        return Evaluation(loads, bus, moves, tuple(violations), self.longest_chain(assignment))
+
+    def longest_chain(self, assignment: Sequence[int]) -> Fraction | None:
+        """The latency (µs) of the longest chain under ``assignment`` (None: no chain)."""
+        if not self.chains:
+            return None
+
+        def board(u: int) -> str | None:
+            return self.cores[assignment[u]].board if assignment[u] >= 0 else None
+
+        return max(chain.latency(board) for chain in self.chains)
 
     def bus_traffic(self, assignment: Sequence[int]) -> Fraction:
         """KByte/s of the connections between units placed on different boards."""
@@ -509,11 +529,18 @@ def deployment_problem(
     index = {c.path: i for i, c in enumerate(cores)}
     allowed_lists = []
     current = []
-    for unit, obj in zip(units, unit_objs, strict=True):
+    pins = device_pins(root, unit_objs, [c.path for c in cores], mode)
+    for u, (unit, obj) in enumerate(zip(units, unit_objs, strict=True)):
         chosen = set(range(len(cores)))
         declared = _from_unit_up(reader, obj, "Allowed_Processor_Binding", mode, root)
         if declared:
-            chosen &= _covered(declared, index)
+            covered = _covered(declared, index)
+            chosen &= covered
+            names = ", ".join(instance_path(t) for t in declared)
+            pins.append(Pin(u, names, "", tuple(sorted(covered))))
+        for pin in pins:
+            if pin.unit == u and pin.device:
+                chosen &= set(pin.cores)
         wanted = (
             None if allowed is None else allowed.get(unit.path) or allowed.get(unit.path.partition(".")[2])
         )
@@ -559,6 +586,8 @@ def deployment_problem(
         _traffic(root, unit_objs, reader, mode),
         _bus_capacity(components, reader, mode),
         diagnostics,
+        chain_costs(root, unit_objs, mode),
+        sorted(pins, key=lambda p: (p.unit, p.device, p.board)),
     )
     for u, unit in enumerate(units):
         if all(problem.load[u][c] is None for c in allowed_lists[u]):

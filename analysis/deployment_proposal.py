@@ -54,6 +54,12 @@ class DeploymentProposal:
         p = self.problem
         return [(p.units[u].path, p.cores[c].path) for u, c in enumerate(chosen.assignment)]
 
+    def pins(self) -> list[dict[str, str]]:
+        """The units held to some cores: ``{"path", "to", "by"}``, ``by`` a device or
+        ``Allowed_Processor_Binding``."""
+        p = self.problem
+        return [{"path": p.units[pin.unit].path, "to": pin.board, "by": pin.reason} for pin in p.pins]
+
     def as_dict(self, output: str | None = None) -> dict[str, Any]:
         p = self.problem
         best = self.outcome.best
@@ -66,6 +72,7 @@ class DeploymentProposal:
             "objectives": [o.as_dict() for o in best.objectives] if best else [],
             "binding": [{"path": u, "processor": c} for u, c in self.binding()] if best else [],
             "baseline": {b.name: b.as_dict(p) for b in self.baselines},
+            "pins": self.pins(),
             "output": output,
             "solver": {
                 "seconds": round(self.outcome.seconds, 3),
@@ -97,10 +104,15 @@ class DeploymentProposal:
     def text(self) -> list[str]:
         p = self.problem
         best = self.outcome.best
+        pins = [
+            [_short(p, pin["path"]), pin["to"].replace(p.root + ".", ""), pin["by"].replace(p.root + ".", "")]
+            for pin in self.pins()
+        ]
+        pinned = [""] + table(["pinned unit", "to", "by"], pins) if pins else []
         if best is None:
             lines = [f"no feasible binding ({self.outcome.status}):"]
             lines += [f"  {e}" for e in self.explanation]
-            return lines
+            return lines + pinned
         lines = [f"deployment proposal ({self.outcome.status}, {len(p.units)} units on {len(p.cores)} cores)"]
         rows = [
             [
@@ -113,6 +125,7 @@ class DeploymentProposal:
             for o in best.objectives
         ]
         lines += table(["objective", "value", "unit", "bound", "gap %"], rows)
+        lines += pinned
         lines.append("")
         base = [
             [

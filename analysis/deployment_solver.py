@@ -4,9 +4,18 @@ One Boolean per (unit, candidate core), exactly one per unit. Constraints: each 
 100 % loaded; each board's memory; the bus capacity against the traffic of unit pairs on
 different boards; per-core schedulability. Objectives, lexicographic (each stage minimises one
 with the ones before held at the values found): the highest core load, the total bus load
-(KByte/s crossing boards), the number of units moved from their current
-``Actual_Processor_Binding``. The longest chain latency is not an objective: rosaadl has no
-executor analysis to give a chain's latency under a binding yet.
+(KByte/s crossing boards), the longest chain latency, the number of units moved from their
+current ``Actual_Processor_Binding``.
+
+**Chain latency.** Each cause-effect chain of the executor analysis costs its fixed part (timer
+periods + execution times) plus the transmission of each of its topics whose units are on
+different boards (:mod:`rosaadl.analysis.deployment_links`): linear in the "on different boards"
+Booleans the bus objective has (``y >= x[u,b] - x[v,b]`` per board), so ``L >= chain`` for every
+chain and ``L`` minimised is the longest chain exactly. This is the executor analysis's reaction
+time of the chain (crossing topics bound to the solver's bus) less the waiting of its callbacks
+in their executors and on their cores, which the solver does not model. Microseconds are scaled
+like the loads (exact up to 10^9, else by 1000: nanoseconds, rounded down). The stage is skipped
+when no binding can change the value (no chain, one board, or no topic between units).
 
 **Integers.** CP-SAT works on integers. Loads are exact fractions (Σ CET / Period); they are
 scaled by the least common multiple of their denominators when it is at most 10^9, so the model
@@ -54,8 +63,13 @@ __all__ = [
 
 RESOLUTION = 10**6  #: the scale of a core's capacity when the exact one is larger than EXACT_LIMIT
 EXACT_LIMIT = 10**9
-_STAGE_SHARE = (0.8, 0.9, 1.0)  #: stage k may use the time up to this share of the binding's budget
-LATENCY_NOTE = "not computed: rosaadl has no executor analysis yet"
+_STAGE_SHARE = (0.8, 0.9, 0.95, 1.0)  #: stage k may use the time up to this share of the binding's budget
+LATENCY_SCALE = 1000  #: the scale of a microsecond when the exact one is larger than EXACT_LIMIT
+LATENCY_NOTE = (
+    "timer periods + execution times + transmission of the topics that cross boards; "
+    "the executor analysis adds the waiting of each callback"
+)
+NO_CHAIN_NOTE = "the model has no cause-effect chain"
 
 
 def integer_scale(values: Iterable[Fraction]) -> tuple[int, bool]:
@@ -148,6 +162,7 @@ class _Model:
     load_scale: int
     memory_scale: int
     traffic_scale: int
+    latency_scale: int
     cuts: list[tuple[int, tuple[int, ...]]]
     excluded: list[tuple[int, ...]]
     model: Any = None
@@ -216,6 +231,7 @@ class _Model:
         )
         if p.bus_capacity is not None and crossing:
             m.add(self.bus <= _scaled(p.bus_capacity, self.traffic_scale))
+        self._chains(boards, on)
         moved = []
         for u in range(len(p.units)):
             if p.current[u]:
@@ -226,6 +242,43 @@ class _Model:
             self._add_cut(core, members)
         for assignment in self.excluded:
             m.add(sum(self.x[u, c] for u, c in enumerate(assignment)) <= len(assignment) - 1)
+
+    def _chains(self, boards: list[str], on: dict[tuple[int, str], list[Any]]) -> None:
+        """The longest chain latency: at least each chain's fixed part plus the transmission of
+        each of its links whose units are on different boards (one Boolean per unit pair,
+        shared with the bus objective)."""
+        p, m = self.problem, self.model
+        self.latency_varies = False
+        self.latency_low = 0
+        if not p.chains:
+            self.latency = m.new_constant(0)
+            return
+        pairs = {(min(u, v), max(u, v)): y for u, v, y in self.y}
+        expressions = []
+        for chain in p.chains:
+            terms = []
+            for u, v, us in chain.links:
+                weight = _scaled(us, self.latency_scale)
+                key = (min(u, v), max(u, v))
+                if weight <= 0 or len(boards) < 2:
+                    continue
+                y = pairs.get(key)
+                if y is None:
+                    y = m.new_bool_var(f"y{key[0]}_{key[1]}")
+                    pairs[key] = y
+                    self.y.append((key[0], key[1], y))
+                    for b in boards:
+                        m.add(sum(on.get((key[0], b), [])) - sum(on.get((key[1], b), [])) <= y)
+                terms.append((weight, y))
+            expressions.append((_scaled(chain.fixed_us, self.latency_scale), terms))
+        low = max(fixed for fixed, _terms in expressions)
+        high = max(fixed + sum(w for w, _y in terms) for fixed, terms in expressions)
+        self.latency_varies = high > low
+        self.latency_low = low
+        self.latency = m.new_int_var(low, high, "longest_chain")
+        for fixed, terms in expressions:
+            if terms:
+                m.add(self.latency >= fixed + sum(w * y for w, y in terms))
 
     def _add_cut(self, core: int, members: tuple[int, ...]) -> None:
         variables = [self.x.get((u, core)) for u in members]
@@ -334,7 +387,12 @@ def solve_deployment(
         [rate for _u, _v, rate in problem.traffic]
         + ([problem.bus_capacity] if problem.bus_capacity is not None else [])
     )
-    state = _Model(problem, load_scale, memory_scale, traffic_scale, [], [])
+    latency_scale, exact_latency = integer_scale(
+        [c.fixed_us for c in problem.chains] + [us for c in problem.chains for _u, _v, us in c.links]
+    )
+    if not exact_latency:
+        latency_scale = LATENCY_SCALE
+    state = _Model(problem, load_scale, memory_scale, traffic_scale, latency_scale, [], [])
     if any(not problem.candidates(u) for u in range(len(problem.units))):
         return SolverOutcome("infeasible", (), load_scale, exact_load, time.perf_counter() - start, 0, 0)
     budget = max(0.05, time_limit / max(1, keep))
@@ -345,10 +403,20 @@ def solve_deployment(
         began = time.perf_counter()
         state.build()
         incumbent = _best_hint(problem, hints, state.excluded)
-        stages = [("max_core_load", state.z), ("bus_load", state.bus), ("moves", state.moves)]
+        stages = [
+            ("max_core_load", state.z),
+            ("bus_load", state.bus),
+            ("longest_chain_latency", state.latency),
+            ("moves", state.moves),
+        ]
         values: list[tuple[int, int, bool]] = []
         used = 0.0 if deterministic else time.perf_counter() - began
         for stage, (_name, expression) in enumerate(stages):
+            if stage == 2 and incumbent is not None and not state.latency_varies:
+                # no binding changes it (no chain, or no link between units that may part)
+                held = _stage_value(state, stage, incumbent)
+                values.append((held, held, True))
+                continue
             limit = budget * _STAGE_SHARE[stage] if incumbent is not None else budget
             found = None
             unproven_bound = -1.0
@@ -420,14 +488,14 @@ def solve_deployment(
 def _best_hint(
     problem: DeploymentProblem, hints: Sequence[Sequence[int]], excluded: list[tuple[int, ...]]
 ) -> tuple[int, ...] | None:
-    """The best of the hints that pass every check (highest load, bus, moves), None if none."""
+    """The best of the hints that pass every check (highest load, bus, chain, moves), None if none."""
     best, key = None, None
     for hint in hints:
         if len(hint) != len(problem.units) or tuple(hint) in excluded:
             continue
         evaluation = problem.evaluate(hint)
         if evaluation.feasible:
-            mine = (evaluation.max_load, evaluation.bus_kbyteps, evaluation.moves)
+            mine = (evaluation.max_load, evaluation.bus_kbyteps, evaluation.latency_us or 0, evaluation.moves)
             if key is None or mine < key:
                 best, key = tuple(hint), mine
     return best
@@ -447,6 +515,19 @@ def _stage_value(state: _Model, stage: int, assignment: Sequence[int]) -> int:
             for u, v, rate in p.traffic
             if p.cores[assignment[u]].board != p.cores[assignment[v]].board
         )
+    if stage == 2:
+        if not p.chains:
+            return 0
+
+        def crossing(u: int, v: int) -> bool:
+            boards = p.boards()
+            return len(boards) > 1 and p.cores[assignment[u]].board != p.cores[assignment[v]].board
+
+        return max(
+            _scaled(chain.fixed_us, state.latency_scale)
+            + sum(_scaled(us, state.latency_scale) for u, v, us in chain.links if crossing(u, v))
+            for chain in p.chains
+        )
     return p.evaluate(assignment).moves
 
 
@@ -457,16 +538,31 @@ def _solved(
     values: list[tuple[int, int, bool]],
 ) -> SolvedBinding:
     evaluation = problem.evaluate(assignment)
-    scales = (state.load_scale, state.traffic_scale, 1)
-    exact_values: tuple[Any, ...] = (evaluation.max_load, evaluation.bus_kbyteps, evaluation.moves)
+    scales = (state.load_scale, state.traffic_scale, state.latency_scale, 1)
+    exact_values: tuple[Any, ...] = (
+        evaluation.max_load,
+        evaluation.bus_kbyteps,
+        evaluation.latency_us,
+        evaluation.moves,
+    )
     objectives = []
     optimal = True
     for stage, (name, unit) in enumerate(
-        (("max_core_load", "percent"), ("bus_load", "KByte/s"), ("moves", "units"))
+        (
+            ("max_core_load", "percent"),
+            ("bus_load", "KByte/s"),
+            ("longest_chain_latency", "us"),
+            ("moves", "units"),
+        )
     ):
         _value, bound, proven = values[stage] if stage < len(values) else (-1, -1, False)
         optimal = optimal and proven
         exact = exact_values[stage]
+        if exact is None:  # no chain
+            objectives.append(Objective(name, None, None, unit, NO_CHAIN_NOTE))
+            continue
+        if stage == 2 and state.latency_low > 0:  # no chain is shorter than its fixed part
+            bound = max(bound, state.latency_low)
         if bound < 0:
             bound_value: Fraction | int | None = None
         else:
@@ -476,7 +572,6 @@ def _solved(
         if name == "max_core_load":
             exact = exact * 100
             bound_value = None if bound_value is None else bound_value * 100
-        objectives.append(Objective(name, exact, bound_value, unit))
-        if name == "bus_load":
-            objectives.append(Objective("longest_chain_latency", None, None, "s", LATENCY_NOTE))
+        note = LATENCY_NOTE if name == "longest_chain_latency" else ""
+        objectives.append(Objective(name, exact, bound_value, unit, note))
     return SolvedBinding(assignment, evaluation, tuple(objectives), optimal)

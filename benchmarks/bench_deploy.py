@@ -13,7 +13,10 @@ Side by side in one run, on each scale model of the deployment issue
   * its highest core load against first-fit decreasing and best-fit decreasing on the same model
     (ratio proposal / baseline; a baseline that leaves units unplaced or breaks a constraint says
     so in the note);
-  * the bus load and the moves from the current binding, in the notes.
+  * the bus load and the moves from the current binding, in the notes;
+  * the same model with its ring of topics left open (one cause-effect chain through every
+    node, so the longest chain latency objective has work to do): the proposal's time and the
+    gap of the longest chain latency.
 
 Usage: ``python -m benchmarks.bench_deploy [--budget S] [--work W] [--only 30|100]``.
 """
@@ -57,6 +60,36 @@ def _baseline_note(baseline, seconds: float) -> str:
     return f"{baseline.name} {load:.2f} % in {seconds:.2f} s, bus {float(e.bus_kbyteps):g} KB/s; {state}"
 
 
+def _solve(root, args) -> tuple:
+    """(problem, outcome, CPU seconds, wall seconds, wall seconds to read and start)."""
+    cpu0, wall0 = _clocks()
+    problem = deployment_problem(root, granularity="thread")
+    hints = [
+        worst_fit_decreasing(problem, keep_boards=True).assignment,
+        worst_fit_decreasing(problem).assignment,
+    ]
+    wall1 = time.perf_counter()
+    outcome = solve_deployment(problem, time_limit=args.work, hints=hints, deterministic=True)
+    cpu2, wall2 = _clocks()
+    return problem, outcome, cpu2 - cpu0, wall2 - wall0, wall1 - wall0
+
+
+def _proposal(report: Report, name: str, args, outcome, cpu: float, wall: float, start: float) -> None:
+    best = outcome.best
+    feasible = best is not None and best.evaluation.feasible
+    report.add(
+        f"{name}: proposal",
+        cpu,
+        "s",
+        wall=wall,
+        goal=Goal(args.budget, says=f"a feasible proposal in <= {args.budget:g} s"),
+        note=(
+            f"{outcome.status}, read + start {start:.2f} s, CP-SAT {wall - start:.2f} s, "
+            f"{outcome.solves} solves, {outcome.cuts} cuts" + ("" if feasible else "; NO FEASIBLE BINDING")
+        ),
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="bench_deploy", description=__doc__.splitlines()[0])
     parser.add_argument("--budget", type=float, default=10.0, help="seconds for the whole proposal")
@@ -69,34 +102,13 @@ def main(argv: list[str] | None = None) -> int:
     for index, (name, (nodes, threads, boards, cores)) in enumerate(SCALE_MODELS.items()):
         if args.only is not None and not name.startswith(args.only + " "):
             continue
-        root = robot_to_deploy(nodes, threads, boards, cores)
-        cpu0, wall0 = _clocks()
-        problem = deployment_problem(root, granularity="thread")
-        hints = [
-            worst_fit_decreasing(problem, keep_boards=True).assignment,
-            worst_fit_decreasing(problem).assignment,
-        ]
-        cpu1, wall1 = _clocks()
-        outcome = solve_deployment(problem, time_limit=args.work, hints=hints, deterministic=True)
-        cpu2, wall2 = _clocks()
+        problem, outcome, cpu, wall, start = _solve(robot_to_deploy(nodes, threads, boards, cores), args)
         baselines = []
         for pack in (first_fit_decreasing, best_fit_decreasing):
-            start = time.perf_counter()
-            baselines.append((pack(problem), time.perf_counter() - start))
+            began = time.perf_counter()
+            baselines.append((pack(problem), time.perf_counter() - began))
+        _proposal(report, name, args, outcome, cpu, wall, start)
         best = outcome.best
-        feasible = best is not None and best.evaluation.feasible
-        report.add(
-            f"{name}: proposal",
-            cpu2 - cpu0,
-            "s",
-            wall=wall2 - wall0,
-            goal=Goal(args.budget, says=f"a feasible proposal in <= {args.budget:g} s"),
-            note=(
-                f"{outcome.status}, read + start {wall1 - wall0:.2f} s, CP-SAT {wall2 - wall1:.2f} s, "
-                f"{outcome.solves} solves, {outcome.cuts} cuts"
-                + ("" if feasible else "; NO FEASIBLE BINDING")
-            ),
-        )
         if best is None:
             continue
         top = best.objectives[0]
@@ -128,6 +140,19 @@ def main(argv: list[str] | None = None) -> int:
                 reference=float(baseline.evaluation.max_load * 100),
                 against=baseline.name,
                 note=_baseline_note(baseline, seconds),
+            )
+        chained = f"{name}, one open chain"
+        root = robot_to_deploy(nodes, threads, boards, cores, open_chain=True)
+        problem, outcome, cpu, wall, start = _solve(root, args)
+        _proposal(report, chained, args, outcome, cpu, wall, start)
+        if outcome.best is not None:
+            chain = next(o for o in outcome.best.objectives if o.name == "longest_chain_latency")
+            report.add(
+                f"{chained}: gap of the longest chain latency",
+                chain.gap_percent,
+                "%",
+                note=f"{_text(chain.value)} us against the bound {_text(chain.bound)} us "
+                f"({len(problem.chains)} chain of {len(problem.chains[0].links) + 1} callbacks)",
             )
     return report.finish()
 

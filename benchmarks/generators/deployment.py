@@ -56,11 +56,20 @@ def _component(name: str, category: str, *props: EObject) -> EObject:
 
 
 def robot_to_deploy(
-    nodes: int, threads: int, boards: int, cores: int, *, load: float = 0.6, seed: int = 1
+    nodes: int,
+    threads: int,
+    boards: int,
+    cores: int,
+    *,
+    load: float = 0.6,
+    seed: int = 1,
+    open_chain: bool = False,
 ) -> Any:
     """The ``SystemInstance`` (inside its ``AadlModel``) of a robot of ``boards`` boards and
     ``cores`` cores in all, and ``nodes`` ROS nodes of ``threads`` threads in all, whose
-    callbacks need about ``load`` of the cores' capacity in all."""
+    callbacks need about ``load`` of the cores' capacity in all. The first callbacks of the nodes
+    talk in a ring (no cause-effect chain: every callback is fed), or with ``open_chain`` in a
+    line from node 0 to the last node (one chain through every node)."""
     rng = random.Random(seed)
     workspace = model.new("AadlModel", name="robot")
     reference = model.new(
@@ -147,7 +156,7 @@ def robot_to_deploy(
                 _pa("Deployment_Properties::Allowed_Processor_Binding", _ref(board_objs[0]))
             )
         root.componentInstances.append(process)
-    for n in range(nodes):
+    for n in range(nodes - 1 if open_chain else nodes):
         src, dst = firsts[n], firsts[(n + 1) % nodes]
         root.connectionInstances.append(
             model.new(
