@@ -75,6 +75,7 @@ def test_the_built_in_analyses_are_registered_in_report_order() -> None:
         "simulation",
         "latency",
         "deployment",
+        "compare",
     }
 
 
