@@ -103,6 +103,7 @@ class ProcessMeasurement:
     node: str | None
     cpu_load_percent: float
     core: int | None
+    classifier: str | None = None  #: the model's classifier of the process (``Pkg::type.impl``)
 
 
 @dataclass(frozen=True)
@@ -175,7 +176,9 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
         for t in document["threads"]
     )
     processes = tuple(
-        ProcessMeasurement(p["path"], p.get("node"), float(p["cpu_load_percent"]), p.get("core"))
+        ProcessMeasurement(
+            p["path"], p.get("node"), float(p["cpu_load_percent"]), p.get("core"), p.get("classifier")
+        )
         for p in document["processes"]
     )
     topics = tuple(

@@ -37,8 +37,14 @@ _SAMPLE: dict[str, Any] = {
         },
     ],
     "processes": [
-        {"path": "rem_trk_sw.usbcam", "node": "usbcam", "cpu_load_percent": 8.1, "core": 0},
-        {"path": "rem_trk_sw.poscmd", "node": "poscmd", "cpu_load_percent": 1.6, "core": 1},
+        {
+            "path": "rem_trk_sw.usbcam",
+            "node": "usb_cam",
+            "classifier": "nd_usb_cam::usb_cam_nd.xu4_a15",
+            "cpu_load_percent": 8.1,
+            "core": 0,
+        },
+        {"path": "rem_trk_sw.poscmd", "node": "pos_to_cmd", "cpu_load_percent": 1.6, "core": 1},
     ],
     "topics": [
         {
