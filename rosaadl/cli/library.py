@@ -9,8 +9,9 @@
   implementations, features, subcomponents, connections, flows and properties with units. An
   unknown or ambiguous name exits 1 and lists the candidates.
 * ``add-profile MEASUREMENTS.csv|measurements.json [INPUT...] -o DIR``: measurements of nodes on
-  boards and cores (or a measured run) turned into PDM packages ``<node package>_profiles`` in ``DIR`` (see ``docs/library.md``).
-  Every bad row is reported with its line and column; nothing is written then.
+  boards and cores (or a measured run) turned into PDM packages ``<node package>_profiles`` in
+  ``DIR`` (see ``docs/library.md``). Every bad row is reported with its line and column; nothing is
+  written then.
 """
 
 from __future__ import annotations
