@@ -1,8 +1,9 @@
 """One result object for every analysis of an instance, and its renderings.
 
 :func:`run_analyses` runs the selected analyses (those of :mod:`rosaadl.analysis.registry`:
-``cpu``, ``budget``, ``bus``, ``sched``, ``sim``, ``latency``, ``deploy``, ``compare``, and any other
-registered) on an instance and gathers them in an :class:`AnalysisReport`:
+``cpu``, ``budget``, ``bus``, ``sched``, ``sim``, ``latency``, ``executor``, ``deploy``,
+``compare``, and any other registered) on an instance and gathers them in an
+:class:`AnalysisReport`:
 
 * :meth:`AnalysisReport.as_dict` / :meth:`AnalysisReport.to_json`: the JSON document of
   ``rosaadl analyze --format json``::
@@ -54,9 +55,9 @@ from rosaadl.errors import Diagnostic
 __all__ = ["ANALYSES", "DEFAULT_ANALYSES", "AnalysisReport", "run_analyses", "parse_only"]
 
 #: The analyses rosaadl ships, in report order (others may be registered).
-ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "deploy", "compare")
+ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "executor", "deploy", "compare")
 #: What runs when nothing is selected (the deployment search proposes, it does not check).
-DEFAULT_ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency")
+DEFAULT_ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "executor")
 
 
 def _safe_name(name: str) -> str:

@@ -33,7 +33,7 @@ import gc
 import os
 import re
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
@@ -45,7 +45,7 @@ from lark.tree import Meta
 
 from rosaadl.errors import AadlSyntaxError
 
-__all__ = ["parse", "AADL_GRAMMAR"]
+__all__ = ["parse", "decode", "AADL_GRAMMAR"]
 
 
 def _grammar_text() -> str:
@@ -256,7 +256,7 @@ class _Reader:
                 for symbol, (action, arg) in row.items()
             }
 
-    def parse(self, text: str) -> Tree[Token]:
+    def parse(self, text: str, hooks: Mapping[str, Callable[[Tree], object]]) -> object:
         actions = self.actions
         kept = self.kept
         kept_later = self.kept_by_bang_rules
@@ -329,7 +329,10 @@ class _Reader:
                     del stack[-size:]
                 else:
                     children = []
-                values.append(callback(children))
+                node = callback(children)
+                if origin in hooks:
+                    node = hooks[origin](node)
+                values.append(node)
                 stack.append(actions[stack[-1]][origin][1])
                 row = actions[stack[-1]]
             prev_kind, prev_value = kind, value
@@ -343,7 +346,10 @@ class _Reader:
             if size:
                 del values[-size:]
                 del stack[-size:]
-            values.append(callback(children))
+            node = callback(children)
+            if origin in hooks:
+                node = hooks[origin](node)
+            values.append(node)
             stack.append(actions[stack[-1]][origin][1])
             if stack[-1] == self.end_state:
                 return values[-1]
@@ -448,7 +454,9 @@ def _reader() -> _Reader:
     return _Reader()
 
 
-def _decode(data: bytes, filename: str) -> str:
+def decode(data: bytes, filename: str) -> str:
+    """AADL text from UTF-8 bytes (a leading byte-order mark dropped); bytes that are not UTF-8
+    are an :class:`AadlSyntaxError` at their line and column."""
     if data.startswith(codecs.BOM_UTF8):
         data = data[len(codecs.BOM_UTF8) :]
     try:
@@ -503,7 +511,13 @@ def _syntax_error(exc: _Unexpected, text: str, filename: str, quote: bool = True
     return AadlSyntaxError(message, file=filename, line=line, column=column)
 
 
-def parse(text: str | bytes, filename: str = "<string>", *, quote: bool = True) -> Tree[Token]:
+def parse(
+    text: str | bytes,
+    filename: str = "<string>",
+    *,
+    quote: bool = True,
+    hooks: Mapping[str, Callable[[Tree], object]] | None = None,
+) -> Tree[Token]:
     """Parse AADL text into a lark tree rooted at a ``specification`` node.
 
     ``text`` is a ``str`` or UTF-8 ``bytes`` (a leading byte-order mark is dropped).  The
@@ -513,11 +527,17 @@ def parse(text: str | bytes, filename: str = "<string>", *, quote: bool = True) 
     the text (not the token met, nor the one before it), for a file whose content must not be
     echoed (one reached through a symbolic link out of the folder the user named).
 
+    ``hooks`` map rule names (``package``, ``component_type``, ...) to functions called with
+    each node of that rule as soon as the parser has made it (its children complete, in text
+    order); what a hook returns takes the node's place in its parent.  A reader builds its own
+    objects that way while parsing, and the tree of a part already built is released at once:
+    the whole tree of a large text is never held.  An exception a hook raises ends the parse.
+
     The cyclic garbage collector is paused while the tree is built: the tree has no cycles,
     and collections triggered by its many new objects would make large inputs 2-3x slower.
     """
     if isinstance(text, bytes | bytearray | memoryview):
-        text = _decode(bytes(text), filename)
+        text = decode(bytes(text), filename)
     if text.startswith("\ufeff"):
         text = text[1:]
     reader = _reader()
@@ -525,7 +545,7 @@ def parse(text: str | bytes, filename: str = "<string>", *, quote: bool = True) 
     if collecting:
         gc.disable()
     try:
-        return reader.parse(text)
+        return reader.parse(text, hooks or {})
     except _Unexpected as exc:
         raise _syntax_error(exc, text, filename, quote) from None
     finally:

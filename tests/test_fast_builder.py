@@ -232,6 +232,28 @@ def test_fast_ordered_sets_keep_the_first_of_repeated_values_and_work_as_pyecore
     assert model.dumps_json(si) == model.dumps_json(reference)
 
 
+def test_a_fast_ordered_set_of_one_item_makes_its_index_when_first_read() -> None:
+    from rosaadl.bulk import FastFactory
+
+    b = model.FastBuilder()
+    si = b.make("SystemInstance", name="s", category=b.literal("ComponentCategory", "system"))
+    a, c = (b.make("ComponentInstance", name=n) for n in "ac")
+    slot = b.slot(si.eClass, "componentInstances")
+    FastFactory.set_many(si, slot, [a])
+    children = si.__dict__["componentInstances"]
+    assert "map" not in children.__dict__  # no dictionary for the one item until asked
+    assert a in children and c not in children and children.index(a) == 0
+    assert children.__dict__["map"] == {a: 0}
+    children.append(c)
+    assert list(children) == [a, c] and children.index(c) == 1
+    FastFactory.set_many(si, slot, [c])
+    si.componentInstances.remove(c)  # removing reads the index first
+    assert list(si.componentInstances) == [] and c.eContainer() is None
+    FastFactory.set_many(si, slot, [a])
+    si.componentInstances.append(a)  # already there: the set is unchanged
+    assert list(si.componentInstances) == [a]
+
+
 def _with_values(make, literal):
     """A system with a connection and a component holding a property value, built by ``make``
     (see the makers below), to change before any of pyecore's per-object state is read."""

@@ -250,7 +250,9 @@ def _specs(
     return specs, derived
 
 
-def _wcrt_map(root: Any, schedulability: Any) -> dict[str, Fraction]:
+def thread_response_times(root: Any, schedulability: Any) -> dict[str, Fraction]:
+    """Each thread's worst-case response time in µs from the schedulability analysis (run on
+    ``root`` when ``schedulability`` is None); a lower bound bounds nothing and is left out."""
     if schedulability is None:
         from rosaadl.analysis.schedulability import analyze_schedulability
 
@@ -291,7 +293,7 @@ def analyze_latency(
     diagnostics: list[Diagnostic] = []
     reader = PropertyReader(diagnostics)
     specs, derived = _specs(root, chains, limit, reader)
-    response_times = _wcrt_map(root, schedulability) if derived and specs else {}
+    response_times = thread_response_times(root, schedulability) if derived and specs else {}
     results: list[LatencyChain] = []
     soms = system_modes(root)
     for som in soms:

@@ -26,7 +26,7 @@ from rosaadl.analysis.busload import data_size_kbyte
 from rosaadl.analysis.instance_values import PropertyReader, SystemMode, category_of
 from rosaadl.analysis.latency.model import Contributor
 
-__all__ = ["Transmission"]
+__all__ = ["Transmission", "connection_transmission_us"]
 
 _US = 1_000_000
 _PERIODIC = frozenset(
@@ -168,3 +168,15 @@ class Transmission:
             sampling.best_method = sampling.worst_method = "sampled_protocol"
             row.subs.extend([queued, sampling])
         self.waiting = []
+
+
+def connection_transmission_us(conn: Any, reader: PropertyReader, mode: SystemMode) -> Fraction:
+    """The worst time a message of ``conn`` spends between its ends, in µs: the connection's own
+    ``Latency``, plus the sampling period of each periodic bus or protocol it is bound to and the
+    transmission over each (:meth:`Transmission.add_to`); waiting on a shared bus is left out (it
+    needs every flow of the mode, :meth:`Transmission.fill_queuing`)."""
+    transmission = Transmission(reader, mode)
+    row = Contributor(conn, "", "connection")
+    transmission.add_to(conn, row)
+    own = transmission.us(conn, "Communication_Properties::Latency")
+    return own + sum((sub.total(True) + sub.period for sub in row.subs), Fraction(0))

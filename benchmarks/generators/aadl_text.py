@@ -5,11 +5,50 @@
   (``bench_aadl_syntax``, ``bench_aadl_reader``).
 * :func:`instantiable_package_text`: a property set and a package whose system instantiates to
   N instance objects (``bench_aaxl2_export``).
+* :func:`renamed_copies_text`: given AADL texts (the corpus's), copies of them under new unit
+  names up to a size, as one file of many packages and property sets of real-world shape
+  (``bench_aadl_reader``'s peak memory, the reader's memory-bound test).
 """
 
 from __future__ import annotations
 
-__all__ = ["aadl_package_text", "instantiable_package_text"]
+import re
+from collections.abc import Iterable
+
+__all__ = ["aadl_package_text", "instantiable_package_text", "renamed_copies_text"]
+
+# the name of a package (``a::b``) or property set a text declares, at the start of a line
+_UNIT_NAME = re.compile(
+    r"^[ \t]*(?:package[ \t]+([A-Za-z]\w*(?:::[A-Za-z]\w*)*)|property[ \t]+set[ \t]+([A-Za-z]\w*)[ \t]+is)",
+    re.MULTILINE | re.IGNORECASE,
+)
+
+
+def renamed_copies_text(texts: Iterable[str], size: int) -> str:
+    """At least ``size`` characters of AADL: the ``texts`` (each a whole file, ending with its
+    last unit) again and again, the names of the units each declares followed by ``R<copy>``
+    wherever they occur in it (``Pkg`` -> ``PkgR3``, ``Pkg::T`` -> ``PkgR3::T``), so that every
+    copy declares units of its own.  Texts declaring no unit are left out."""
+    sources = []
+    for text in texts:
+        names = sorted({a or b for a, b in _UNIT_NAME.findall(text)}, key=len, reverse=True)
+        if names:
+            pattern = re.compile(r"(?<![\w:])(" + "|".join(map(re.escape, names)) + r")(?!\w)", re.IGNORECASE)
+            sources.append((text, pattern))
+    if not sources:
+        raise ValueError("no text declares a package or property set")
+    out: list[str] = []
+    total = copy = 0
+    while total < size:
+        for text, pattern in sources:
+            suffix = f"R{copy}"
+            renamed = pattern.sub(lambda m, s=suffix: m.group(1) + s, text) + "\n"
+            out.append(renamed)
+            total += len(renamed)
+            if total >= size:
+                break
+        copy += 1
+    return "".join(out)
 
 
 def aadl_package_text(components: int = 10_000) -> str:

@@ -18,7 +18,8 @@ Each process instance is one node of the launch files:
   else the highest of its threads') is written as ``chrt -f <priority>`` / ``chrt -r``; a
   ``Priority`` with no policy on the process means ``SCHED_FIFO``; ``SCHED_OTHER(S)`` means no
   real-time scheduling.  Linux real-time priorities are 1..99; other values are clamped;
-* the parameters of each thread (period, deadline, priority) and the remapping of each local
+* the parameters of each thread (period, deadline, priority, and the bounds of its
+  ``Compute_Execution_Time`` when it has one) and the remapping of each local
   topic or service name to the topic its connections give.
 """
 
@@ -33,7 +34,7 @@ from rosaadl import model
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import naming
 from rosaadl.exporters.rclpy.instances import enum_name, key, prop
-from rosaadl.exporters.rclpy.nodes import NodeClass, ThreadPlan, seconds, threads_of
+from rosaadl.exporters.rclpy.nodes import NodeClass, ThreadPlan, cet_bounds, seconds, threads_of
 from rosaadl.exporters.rclpy.topics import Group, normalize_ros_name
 from rosaadl.properties import Reference
 
@@ -339,6 +340,10 @@ class Deployment:
                     priority if isinstance(priority, int) and not isinstance(priority, bool) else 0,
                 )
             )
+            cet = cet_bounds(prop(thread, "Compute_Execution_Time")) if thread is not None else None
+            if cet is not None:  # the workload twin's CPU time per dispatch (parameter rosaadl.emulate)
+                node.parameters.append((f"{plan.ident}.cet_min", cet[0]))
+                node.parameters.append((f"{plan.ident}.cet_max", cet[1]))
 
     def _remappings(self, node: NodeInstance, topics: dict[int, Group], services: dict[int, Group]) -> None:
         chosen: dict[str, str] = {}

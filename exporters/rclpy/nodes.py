@@ -16,7 +16,9 @@ their class; each process instance is one node in the launch files).  Inside a n
   helper that calls it with ``call_async``); Queue_Size (or ``ROS_Properties::QoS_Depth``) →
   QoS depth, event ports KEEP_LAST/RELIABLE, data ports depth 1;
 * parameters ``<thread>.period``, ``<thread>.deadline`` (seconds) and ``<thread>.priority``;
-  each dispatching callback logs a deadline overrun.
+  each dispatching callback logs a deadline overrun;
+* the workload twin (:mod:`~rosaadl.exporters.rclpy.twin`): ``Compute_Execution_Time`` bounds of
+  each thread (parameters ``<thread>.cet_min``/``cet_max``) and the ``Data_Size`` of each out port.
 
 A process with no thread is one implicit thread named after the node, so that its ports still
 have their constructs.
@@ -36,6 +38,7 @@ from rosaadl.exporters.rclpy.instances import enum_name, key, prop
 from rosaadl.exporters.rclpy.messages import InterfaceType, MessageCatalog
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.topics import Topology
+from rosaadl.exporters.rclpy.twin import assign_twin_outputs
 from rosaadl.properties import Range
 from rosaadl.units import Quantity
 
@@ -48,6 +51,8 @@ __all__ = [
     "NodeClass",
     "NodeBuilder",
     "seconds",
+    "cet_bounds",
+    "size_bytes",
     "quantity_text",
     "threads_of",
 ]
@@ -55,7 +60,31 @@ __all__ = [
 log = logging.getLogger(__name__)
 
 #: Fixed marker and method names of a node module, which model names must not take.
-_RESERVED_MEMBERS = frozenset({"imports", "init", "members", "main", "check_deadline", "node"})
+_RESERVED_MEMBERS = frozenset(
+    {
+        "imports",
+        "init",
+        "members",
+        "main",
+        "check_deadline",
+        "node",
+        "period_of",
+        "cet_of",
+        "emulate",
+        "emulating",
+        "payload",
+        "twin",
+        "twin_publishing",
+        "take_priority",
+        "scheduling",
+        "started_scheduling",
+        "warned",
+        "warn_once",
+        "release_of",
+        "start_timers",
+    }
+)
+
 _PORT_CATEGORIES = frozenset({"dataPort", "eventPort", "eventDataPort"})
 _ACCESS_CATEGORIES = frozenset({"subprogramAccess", "subprogramGroupAccess"})
 _UNPROTECTED = frozenset({"", "none_specified", "nonespecified", "none"})
@@ -90,6 +119,7 @@ class PortPlan:
     callback: str = ""
     queue_attr: str = ""
     marker: str = ""
+    data_size: int | None = None  # Data_Size in bytes (the workload twin's payload)
 
 
 @dataclass
@@ -136,6 +166,7 @@ class ThreadPlan:
     period_text: str = ""
     deadline_text: str = ""
     cet_text: str = ""
+    cet: tuple[float, float] | None = None  # Compute_Execution_Time bounds in seconds
     policy: str = ""
     group: GroupPlan | None = None
     ports: list[PortPlan] = field(default_factory=list)
@@ -147,6 +178,21 @@ class ThreadPlan:
     implicit: bool = False
     container: bool = False  # a thread group's (or the process's) own ports, no thread of its own
     dispatch_inferred: bool = False
+    twin_outputs: list[PortPlan] = field(default_factory=list)  # what its emulated dispatch publishes
+
+    @property
+    def sched_policy(self) -> str:
+        """The policy its priority runs with, as the generated code writes it: ``os.SCHED_FIFO``
+        or ``os.SCHED_RR`` when the thread's POSIX_Scheduling_Policy says so, else ``None``: the
+        policy the node was started with (the launch prefix's ``chrt``, from the process)."""
+        policy = self.policy.lower()
+        return {"sched_fifo": "os.SCHED_FIFO", "sched_rr": "os.SCHED_RR"}.get(policy, "None")
+
+    @property
+    def dispatches(self) -> bool:
+        """Whether the thread has callbacks of its own (a timer, triggering ports or services)."""
+        triggered = [p for p in self.inputs if p.triggers]
+        return not self.container and bool(self.timer or self.servers or triggered)
 
     @property
     def inputs(self) -> list[PortPlan]:
@@ -241,6 +287,31 @@ def seconds(value: object) -> float | None:
             return None
         return float(converted)
     return None
+
+
+def cet_bounds(value: object) -> tuple[float, float] | None:
+    """``Compute_Execution_Time`` as (lower, upper) bound in seconds (a single time: both), None
+    when it is not a time."""
+    if isinstance(value, Range):
+        low, high = seconds(value.minimum), seconds(value.maximum)
+        if low is None or high is None:
+            return None
+        return (min(low, high), max(low, high))
+    one = seconds(value)
+    return None if one is None else (one, one)
+
+
+def size_bytes(value: object) -> int | None:
+    """A ``Size`` property value (``Data_Size``) in bytes, None when it is not a size."""
+    if isinstance(value, Range):
+        value = value.maximum
+    if not isinstance(value, Quantity) or isinstance(value.value, bool):
+        return None
+    try:
+        converted = value.to("Bytes")
+    except Exception:  # noqa: BLE001 - not a size unit
+        return None
+    return max(0, round(converted)) if isinstance(converted, (int, float)) else None
 
 
 def quantity_text(value: object) -> str:
@@ -407,6 +478,7 @@ class NodeBuilder:
                     cls.threads.append(self._thread(cls, container, process, rel, members, features=ends))
         cls.thread_count = max(1, count)
         self._groups(cls, process, threads)
+        assign_twin_outputs(cls)
         self._finish(cls)
         return cls
 
@@ -441,6 +513,7 @@ class NodeBuilder:
             period_text=quantity_text(period_value) if seconds(period_value) is not None else "",
             deadline_text=quantity_text(deadline_value) if seconds(deadline_value) is not None else "",
             cet_text="" if container else quantity_text(prop(thread, "Compute_Execution_Time")),
+            cet=None if container else cet_bounds(prop(thread, "Compute_Execution_Time")),
             policy="" if container else enum_name(prop(thread, "POSIX_Scheduling_Policy")),
             implicit=implicit,
             container=container,
@@ -498,6 +571,7 @@ class NodeBuilder:
                 qos=self._qos(feature, category),
                 key=key(feature),
                 rel_path=(*plan.rel_path, feature.name or ""),
+                data_size=size_bytes(prop(feature, "Data_Size")),
             )
             if one == "out":
                 port.attr = f"pub_{base}"
@@ -694,6 +768,7 @@ class NodeBuilder:
             cls.class_name,
             "Node",
             "MultiThreadedExecutor",
+            "ExternalShutdownException",
             "MutuallyExclusiveCallbackGroup",
             "ReentrantCallbackGroup",
             "QoSProfile",
@@ -701,6 +776,10 @@ class NodeBuilder:
             "QoSReliabilityPolicy",
             "QoSDurabilityPolicy",
             "rclpy",
+            "array",
+            "os",
+            "random",
+            "threading",
             "time",
             "deque",
             "main",
@@ -732,7 +811,7 @@ class NodeBuilder:
         ]
         imports.append(("rclpy", []))
         imports.append(("rclpy.callback_groups", cls.group_kinds))
-        imports.append(("rclpy.executors", ["MultiThreadedExecutor"]))
+        imports.append(("rclpy.executors", ["ExternalShutdownException", "MultiThreadedExecutor"]))
         imports.append(("rclpy.node", ["Node"]))
         if cls.ports:
             imports.append(

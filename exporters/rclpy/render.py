@@ -14,6 +14,7 @@ from functools import lru_cache
 import jinja2
 
 from rosaadl.exporters.rclpy.nodes import QoS
+from rosaadl.exporters.rclpy.twin import payload_note
 
 __all__ = [
     "LINE_LENGTH",
@@ -177,6 +178,7 @@ def environment() -> jinja2.Environment:
         xml=xml_text,
         qos=qos_expression,
         import_line=import_line,
+        payload_note=payload_note,
         self_attr=lambda name: f"self.{name}",
         self_call=lambda name: f"self.{name}()",
     )

@@ -43,6 +43,7 @@ from rosaadl.exporters.rclpy.nodes import NodeBuilder, NodeClass
 from rosaadl.exporters.rclpy.preservation import fit_marker
 from rosaadl.exporters.rclpy.render import render_template
 from rosaadl.exporters.rclpy.topics import Topology
+from rosaadl.exporters.rclpy.twin import skeleton_before_twin
 from rosaadl.fileio import existing, loads_bounded, safe_join, sweep_temporaries, write_files
 from rosaadl.properties import own_property
 
@@ -805,7 +806,8 @@ def generate_workspace(
             continue
         gen = generated.get(old.path)
         if gen is not None and old.block.name in gen.blocks:
-            placed[(old.path, old.block.name)] = old.block.content
+            if not skeleton_before_twin(old.block.content, gen.blocks[old.block.name].content):
+                placed[(old.path, old.block.name)] = old.block.content
             old.used = True
     for old in old_blocks:
         if old.used or old.key is None:

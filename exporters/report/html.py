@@ -31,6 +31,7 @@ from markupsafe import Markup, escape
 from rosaadl.errors import ExportError
 from rosaadl.exporters.report import svg as charts
 from rosaadl.exporters.report.compare_chart import compare_chart
+from rosaadl.exporters.report.executor_charts import chain_chart, executor_gantt, executor_section
 from rosaadl.exporters.report.latency_chart import latency_chart
 from rosaadl.exporters.report.view import build_view, short_path
 
@@ -418,6 +419,44 @@ def _tables(view: dict[str, Any], report: Any) -> list[dict[str, Any]]:
     return tables
 
 
+def _executor_tables(report: Any) -> list[dict[str, Any]]:
+    """The executor analysis's tables: each callback's bound under its executor beside its
+    preemptive-thread WCRT, and each chain's reaction time and data age."""
+    result = report.result("executor") if hasattr(report, "result") else None
+    if result is None:
+        return []
+    rows = [
+        _row(
+            [short_path(c.path), short_path(c.executor), c.kind, c.wcrt, c.thread_wcrt, c.deadline],
+            "bad" if c.met is False else "",
+        )
+        for c in result.callbacks
+    ]
+    chains = [
+        _row([c.name, c.reaction_time, c.data_age, c.deadline], "bad" if c.met is False else "")
+        for c in result.chains
+    ]
+    return [
+        _table(
+            "executor-callbacks",
+            "Callback response times under their executors (us)",
+            ["Callback", "Executor", "Kind", "WCRT (executor)", "WCRT (preemptive thread)", "Deadline"],
+            rows,
+            paths=[0, 1],
+            numeric=[3, 4, 5],
+            empty="No callback.",
+        ),
+        _table(
+            "executor-chains",
+            "Cause-effect chains (us)",
+            ["Chain", "Reaction time", "Data age", "Deadline"],
+            chains,
+            numeric=[1, 2, 3],
+            empty="No cause-effect chain.",
+        ),
+    ]
+
+
 # =============================================================================== rendering
 
 
@@ -436,11 +475,15 @@ def render_report(
             (view["analyses"].get("compare") or {}).get("items") or [], view["instance"]
         ),
     }
+    executors = executor_section(report)
+    svgs["chains"] = chain_chart(executors)
+    svgs["executors"] = executor_gantt(executors)
     template = _environment().get_template("report.html.j2")
     html = template.render(
         view=view,
         svgs={k: Markup(v) for k, v in svgs.items()},
-        tables=_tables(view, report),
+        tables=_tables(view, report) + _executor_tables(report),
+        executors=executors,
         css=Markup(_template_text("report.css")),
         version=_version(),
     )

@@ -6,7 +6,9 @@ sorted order) together with the component library of this project (``library_fil
 checks names, units and enumeration literals across all of them.
 
 The text is parsed by :mod:`rosaadl.importers.aadl_syntax` (a deterministic LALR(1) grammar);
-the builder walks the tree once and makes the model objects with
+the builder makes each classifier, package and property set as soon as the parser has made its
+node, and its tree is released then (the whole parse tree of a file is never held: reading
+takes the memory of the model, the text and the tree of one classifier), with
 :class:`rosaadl.bulk.FastFactory` (no pyecore notifications or per-value checks: the values are
 typed by construction).  What the text says is kept: names and references exactly
 as written (``Timing_Properties::Period``, ``ros_data::Image.rgb``, ``a.b[2].c``), every value
@@ -43,7 +45,8 @@ have them; look-ups find the first).
 The package, one idea per module:
 
 * :mod:`.reading`: the entry points (``read_string``, ``read_files``, ``library_files``);
-* :mod:`.units`: the builder of packages and classifiers, around :mod:`.members` (the members
+* :mod:`.units`: the builder of packages and classifiers (:func:`.units.read_units`: built while
+  parsed), around :mod:`.members` (the members
   of classifiers), :mod:`.values` (property associations and values) and
   :mod:`.property_sets` (property sets and types);
 * :mod:`.legality`: the legality tables and the checks of what AADL allows where, with the

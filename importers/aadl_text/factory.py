@@ -6,11 +6,17 @@ ints, strs, objects of the right class), with the metamodel's slots looked up on
 :func:`make` sets features by name, :func:`maker` gives a function that sets them by position
 (for the objects made most often), :func:`add` appends to a list feature, and :func:`literals`
 holds the enumeration literals the builder uses.
+
+Every text a feature is set to is interned (:func:`sys.intern`): the same names, property names,
+classifier references and units recur all over a model, and one shared string for each saves
+about a tenth of a model's memory (its strings are otherwise slices of the source, one per use).
+Interned strings are freed with the last model that uses them.
 """
 
 from __future__ import annotations
 
 import functools
+import sys
 from collections.abc import Callable
 from typing import Any
 
@@ -21,7 +27,7 @@ from rosaadl.bulk import FastBuilder, FastFactory, FeatureSlot
 from rosaadl.errors import ModelError
 from rosaadl.importers.aadl_text.tree import CATEGORIES, CONNECTION_NODES, FEATURE_NODES, FLOW_KIND_NODES
 
-__all__ = ["Literals", "add", "literals", "make", "maker"]
+__all__ = ["Literals", "add", "literals", "make", "maker", "update"]
 
 
 @functools.cache
@@ -48,6 +54,9 @@ def _list_slot(eclass: Any, name: str) -> FeatureSlot:
     return FeatureSlot(feature)
 
 
+_intern = sys.intern
+
+
 def make(class_name: str, /, **values: Any) -> EObject:
     """A new object with single-valued features set (None: left unset)."""
     cls, setters = _class_setters(class_name)
@@ -55,8 +64,17 @@ def make(class_name: str, /, **values: Any) -> EObject:
     for name, value in values.items():
         if value is not None:
             slot, setter = setters[name]
-            setter(obj, slot, value)
+            setter(obj, slot, _intern(value) if type(value) is str else value)
     return obj
+
+
+def update(obj: EObject, /, **values: Any) -> None:
+    """Set single-valued features of an object made by :func:`make` (None: left as it is)."""
+    _, setters = _class_setters(obj.eClass.name)
+    for name, value in values.items():
+        if value is not None:
+            slot, setter = setters[name]
+            setter(obj, slot, _intern(value) if type(value) is str else value)
 
 
 @functools.cache
@@ -71,7 +89,7 @@ def maker(class_name: str, *names: str) -> Callable[..., EObject]:
         obj = new(cls)
         for (slot, setter), value in zip(pairs, values, strict=True):
             if value is not None:
-                setter(obj, slot, value)
+                setter(obj, slot, _intern(value) if type(value) is str else value)
         return obj
 
     return make_one

@@ -115,10 +115,13 @@ class Legality:
         self.filename = filename
         self.errors: list[Diagnostic] = []
         self.warnings: list[Diagnostic] = []
-        # the package being built: its classifier names, component types and implementations
+        # the package being built: its classifier names, the category of each component type
+        # and, for each implementation, (type name, implementation name, category); and where
+        # its diagnostics begin in ``errors`` (None: no package open)
         self._classifier_names: dict[str, int] = {}
-        self._types: dict[str, Tree] = {}
-        self._implementations: list[Tree] = []
+        self._types: dict[str, tuple[Token, str]] = {}
+        self._implementations: list[tuple[Token, Token, str]] = []
+        self._package_start: int | None = None
 
     # ----------------------------------------------------------------- diagnostics
 
@@ -164,50 +167,62 @@ class Legality:
             name.column,
         )
 
-    def end_name(self, name: str, end: str, what: str, where: Any) -> None:
-        """A package, classifier or property set ends with its own name."""
+    def end_name(self, name: str, end: str, what: str, where: Any, *, first: int | None = None) -> None:
+        """A package, classifier or property set ends with its own name (the error is put at
+        index ``first`` of ``errors`` when given: a package's, before those of its members)."""
         if name.lower() != end.lower():
             line, column = position(where)
             self.error(f"{what} {name} ends with 'end {end}': expected 'end {name}'", line, column)
+            if first is not None:
+                self.errors.insert(first, self.errors.pop())
 
     # ----------------------------------------------------------------- packages
 
-    def begin_package(self) -> None:
-        self._classifier_names = {}
-        self._types = {}
-        self._implementations = []
+    def begin_package(self) -> int:
+        """Open the package being built, when none is (its first member calls this, or the
+        package itself when it has none); the index in ``errors`` where its diagnostics begin."""
+        if self._package_start is None:
+            self._classifier_names = {}
+            self._types = {}
+            self._implementations = []
+            self._package_start = len(self.errors)
+        return self._package_start
 
     def component_type(self, node: Tree) -> None:
         """A component type of the package (its name declared)."""
-        self.declare(self._classifier_names, node.children[1], "classifier")
-        self._types.setdefault(node.children[1].lower(), node)
+        name = node.children[1]
+        self.declare(self._classifier_names, name, "classifier")
+        self._types.setdefault(name.lower(), (name, keywords(node.children[0])))
 
     def component_implementation(self, node: Tree) -> None:
         """A component implementation of the package (its name declared)."""
         type_name, impl_name = node.children[1].children
         self.declare(self._classifier_names, type_name, "classifier", f"{type_name}.{impl_name}")
-        self._implementations.append(node)
+        self._implementations.append((type_name, impl_name, keywords(node.children[0])))
 
     def feature_group_type(self, node: Tree) -> None:
         """A feature group type of the package (its name declared)."""
         self.declare(self._classifier_names, node.children[0], "classifier")
 
     def end_package(self) -> None:
-        """An implementation has the category of its type (when the type is in this package)."""
-        for impl in self._implementations:
-            type_name, impl_name = impl.children[1].children
+        """An implementation has the category of its type (when the type is in this package);
+        the package is closed."""
+        for type_name, impl_name, impl_category in self._implementations:
             ctype = self._types.get(type_name.lower())
             if ctype is None:
                 continue
-            impl_category = keywords(impl.children[0])
-            type_category = keywords(ctype.children[0])
+            declared, type_category = ctype
             if impl_category != type_category:
                 self.error(
                     f"{impl_category} implementation {type_name}.{impl_name} implements {type_category} "
-                    f"type {ctype.children[1]}: the categories must be the same",
+                    f"type {declared}: the categories must be the same",
                     type_name.line,
                     type_name.column,
                 )
+        self._classifier_names = {}
+        self._types = {}
+        self._implementations = []
+        self._package_start = None
 
     # ----------------------------------------------------------------- sections of classifiers
 

@@ -21,7 +21,6 @@ from pyecore.ecore import EObject
 from rosaadl.arguments import checked, expect_path
 from rosaadl.bulk import gc_paused
 from rosaadl.errors import (
-    AadlSyntaxError,
     Diagnostic,
     Location,
     NameResolutionError,
@@ -30,10 +29,10 @@ from rosaadl.errors import (
     ValidationError,
 )
 from rosaadl.fileio import existing
-from rosaadl.importers.aadl_syntax import parse
+from rosaadl.importers.aadl_syntax import decode
 from rosaadl.importers.aadl_text.checks import check_names_and_values
 from rosaadl.importers.aadl_text.factory import add, make
-from rosaadl.importers.aadl_text.units import build_units
+from rosaadl.importers.aadl_text.units import read_units
 from rosaadl.model import is_a
 
 __all__ = ["AADL_SUFFIXES", "library_files", "read_files", "read_string"]
@@ -67,18 +66,19 @@ def _report(diagnostics: Iterable[Diagnostic], warnings: list[Diagnostic] | None
 def _build(text: str | bytes, filename: str, *, quote: bool = True) -> tuple[list[EObject], list[Diagnostic]]:
     """Parse and build one text; the new units (not yet added to a model) and warnings.
     Without ``quote`` a syntax error shows nothing of the text (:func:`parse`)."""
-    tree = parse(text, filename, quote=quote)
-    if isinstance(text, bytes | bytearray | memoryview):  # the builder slices the decoded text
-        text = bytes(text).decode("utf-8-sig")
+    if isinstance(text, bytes | bytearray | memoryview):  # decoded once: the builder slices the text
+        text = decode(bytes(text), filename)
     if text.startswith("\ufeff"):
         text = text[1:]
-    try:
-        with gc_paused():
-            units, rules = build_units(tree, text, filename)
-    except RecursionError:
-        raise AadlSyntaxError("the text nests too deeply to be read", file=filename) from None
+    with gc_paused():
+        units, rules = read_units(text, filename, quote=quote)
     _raise_errors(rules.errors, ValidationError, "errors")
     return units, rules.warnings
+
+
+def _build_file(path: Path, *, quote: bool = True) -> tuple[list[EObject], list[Diagnostic]]:
+    """:func:`_build` of a file's text, its bytes released once decoded."""
+    return _build(decode(_read_bytes(path), str(path)), str(path), quote=quote)
 
 
 def read_string(
@@ -211,14 +211,14 @@ def read_files(
     library_units: dict[str, EObject] = {}
     if include_library:
         for path in library:
-            units, unit_notes = _build(_read_bytes(path), str(path))
+            units, unit_notes = _build_file(path)
             notes.extend(unit_notes)
             for unit in units:
                 library_units.setdefault(unit.name.lower(), unit)
             if units:
                 add(model, "units", *units)
     for path, inside in files:
-        units, unit_notes = _build(_read_bytes(path), str(path), quote=inside)
+        units, unit_notes = _build_file(path, quote=inside)
         notes.extend(unit_notes)
         for unit in units:
             replaced = library_units.pop(unit.name.lower(), None)

@@ -1,24 +1,30 @@
-"""The AADL builder: the parse tree of one text into the model units it declares.
+"""The AADL builder: the text of one file into the model units it declares, built while it is parsed.
 
-:func:`build_units` walks the tree that :func:`rosaadl.importers.aadl_syntax.parse` gives once,
-depth first, and returns the packages and property sets of the text as model objects (made with
+:func:`read_units` parses a text with :func:`rosaadl.importers.aadl_syntax.parse` and builds
+each classifier, package and property set as soon as the parser has made its node (the parser's
+``hooks``): the tree of a part is released once it is built, so that the whole tree of a large
+file is never held, only the model, the text and the tree of the part being read.  It returns
+the packages and property sets of the text as model objects (made with
 :class:`rosaadl.bulk.FastFactory`, see :mod:`.factory`) together with what the legality rules
 (:mod:`.legality`) found.  :class:`UnitBuilder` builds packages: their sections, ``with``
 clauses, renamings, annex libraries and classifiers (component types, component
 implementations, feature group types); it hands each classifier's sections to
 :class:`.members.MemberBuilder`, property associations to :class:`.values.ValueBuilder` and
 property sets to :class:`.property_sets.PropertySetBuilder`, all four around the same source
-text and legality rules.
+text and legality rules.  :func:`build_units` builds the same from a whole parse tree.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 from lark import Token, Tree
 from pyecore.ecore import EObject
 
-from rosaadl.importers.aadl_text.factory import add, literals, make
+from rosaadl.errors import AadlSyntaxError
+from rosaadl.importers.aadl_syntax import parse
+from rosaadl.importers.aadl_text.factory import add, literals, make, update
 from rosaadl.importers.aadl_text.legality import Legality
 from rosaadl.importers.aadl_text.lexical import SourceText
 from rosaadl.importers.aadl_text.members import MemberBuilder
@@ -26,7 +32,7 @@ from rosaadl.importers.aadl_text.property_sets import PropertySetBuilder
 from rosaadl.importers.aadl_text.tree import classifier_ref, keywords
 from rosaadl.importers.aadl_text.values import ValueBuilder
 
-__all__ = ["UnitBuilder", "build_units"]
+__all__ = ["UnitBuilder", "build_units", "read_units"]
 
 
 def build_units(root: Tree, text: str, filename: str) -> tuple[list[EObject], Legality]:
@@ -37,8 +43,42 @@ def build_units(root: Tree, text: str, filename: str) -> tuple[list[EObject], Le
     return builder.specification(root), builder.rules
 
 
+def read_units(text: str, filename: str, *, quote: bool = True) -> tuple[list[EObject], Legality]:
+    """The model units of a text, built while it is parsed, and the legality rules of the file
+    with the errors and warnings they found.
+
+    Raises the located :class:`rosaadl.errors.AadlSyntaxError` of a syntax error (without
+    ``quote``, showing nothing of the text: :func:`parse`), else of the first literal out of
+    range, else of a text that nests too deeply: a syntax error anywhere in the text comes
+    first, as when the whole tree was parsed before it was built.
+    """
+    builder = UnitBuilder(SourceText(text), Legality(filename))
+    failed: list[AadlSyntaxError] = []
+
+    def building(build: Callable[[Tree], Any]) -> Callable[[Tree], Any]:
+        def hook(node: Tree) -> Any:
+            if failed:  # the text is read only for its syntax errors now
+                return None
+            try:
+                return build(node)
+            except AadlSyntaxError as exc:
+                failed.append(exc)
+            except RecursionError:
+                failed.append(AadlSyntaxError("the text nests too deeply to be read", file=filename))
+            return None
+
+        return hook
+
+    hooks = {name: building(build) for name, build in builder.hooks().items()}
+    root = parse(text, filename, quote=quote, hooks=hooks)
+    if failed:
+        raise failed[0]
+    return root.children, builder.rules
+
+
 class UnitBuilder:
-    """Builds the packages and property sets of one file."""
+    """Builds the packages and property sets of one file, from a whole parse tree
+    (:meth:`specification`) or part by part while it is parsed (:meth:`hooks`)."""
 
     def __init__(self, source: SourceText, rules: Legality) -> None:
         self.source = source
@@ -58,8 +98,36 @@ class UnitBuilder:
             if node.data == "package":
                 units.append(self.package(node))
             else:
-                units.append(self.property_sets.property_set(node, self.filename))
+                units.append(self.property_set(node))
         return units
+
+    def hooks(self) -> dict[str, Callable[[Tree], Any]]:
+        """What builds each node that :func:`parse` makes, when given as its ``hooks``: each
+        classifier (an object without its visibility, which its section sets), each package
+        (around the classifiers already built) and each property set, in text order."""
+        return {
+            "component_type": self._classifier(self.component_type, self.rules.component_type),
+            "component_implementation": self._classifier(
+                self.component_implementation, self.rules.component_implementation
+            ),
+            "feature_group_type": self._classifier(self.feature_group_type, self.rules.feature_group_type),
+            "package": self.package,
+            "property_set": self.property_set,
+        }
+
+    def _classifier(
+        self, build: Callable[[Tree, Any], EObject], declare: Callable[[Tree], None]
+    ) -> Callable[[Tree], EObject]:
+        def classifier(node: Tree) -> EObject:
+            self.rules.begin_package()
+            built = build(node, None)
+            declare(node)
+            return built
+
+        return classifier
+
+    def property_set(self, node: Tree) -> EObject:
+        return self.property_sets.property_set(node, self.filename)
 
     # ----------------------------------------------------------------- packages
 
@@ -67,9 +135,9 @@ class UnitBuilder:
         qname, public, private, properties, end = node.children
         name = "::".join(qname.children)
         first = qname.children[0]
-        self.rules.end_name(name, "::".join(end.children), "package", end.children[0])
+        start = self.rules.begin_package()  # (already open when a classifier was built)
+        self.rules.end_name(name, "::".join(end.children), "package", end.children[0], first=start)
         pkg = make("AadlPackage", name=name, line=first.line, column=first.column, sourceFile=self.filename)
-        self.rules.begin_package()
         for section, visibility in ((public, "public"), (private, "private")):
             if section is not None:
                 self.package_section(pkg, section, visibility)
@@ -86,6 +154,10 @@ class UnitBuilder:
         rules = self.rules
         vis = self.visibility[visibility]
         for item in section.children:
+            if not isinstance(item, Tree):  # a classifier built while parsing
+                update(item, visibility=vis)
+                classifiers.append(item)
+                continue
             kind = item.data
             if kind == "component_type":
                 classifiers.append(self.component_type(item, vis))

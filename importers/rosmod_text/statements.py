@@ -1,7 +1,8 @@
 """Reading ROSMOD statements: times, integers and names out of them, and the model objects they make.
 
 The helpers every textual dialect uses on a :class:`~.blocks.Stmt`: :func:`seconds` (``0.5``,
-and v0.2's ``500ms``), :func:`integer`, :func:`name_of` (``kind name``), :func:`typed_head`
+and v0.2's ``500ms``; :func:`time_problem` says why a number is no time, for v0.4 and
+``.webgmex`` too), :func:`integer`, :func:`name_of` (``kind name``), :func:`typed_head`
 (``kind <package/Type> name``), :func:`qualify`; and :func:`new`, :func:`new_property`, :func:`located`,
 which make ``rosmod.ecore`` objects carrying the line and column they were read at.
 :func:`scheme_literal` is the ``SchedulingScheme`` literal of a name (FIFO, PFIFO or EDF);
@@ -11,7 +12,9 @@ which make ``rosmod.ecore`` objects carrying the line and column they were read 
 from __future__ import annotations
 
 import functools
+import math
 import re
+import sys
 from decimal import Decimal, InvalidOperation
 from typing import Any
 
@@ -25,6 +28,7 @@ from rosaadl.importers.rosmod_text.context import ImportContext
 __all__ = [
     "SCHEMES",
     "seconds",
+    "time_problem",
     "integer",
     "new",
     "scheme_literal",
@@ -60,15 +64,39 @@ def seconds(stmt: Stmt, filename: str) -> Decimal:
         )
     try:
         value = Decimal(match.group(1))
-    except InvalidOperation:  # pragma: no cover - the regex admits only valid decimals
-        raise ParseError(f"{text!r} is not a number", location=at(filename, token)) from None
+        unit = match.group(2)
+        if unit and unit != "s":
+            value = value * _UNIT_SCALE[unit]
+    except ArithmeticError:  # InvalidOperation cannot happen (the regex admits only decimals); Overflow
+        value = Decimal("Infinity")
+    problem = time_problem(value)
+    if problem is not None:
+        raise ParseError(f"{stmt.key} = {text}: {problem}", location=at(filename, token))
+    return value
+
+
+def time_problem(value: Decimal) -> str | None:
+    """Why ``value`` cannot be a time in seconds of the model, or None when it can.
+
+    A time is a finite, non-negative number that stays finite and, unless zero, non-zero as a
+    float (what the transformations and analyses compute with): ``1e309`` overflows to
+    infinity and ``1e-400`` underflows to zero, so both are out of range, as are ``NaN`` and
+    ``Infinity``.
+    """
+    if not value.is_finite():
+        return "expected a finite number of seconds"
     if value < 0:
-        raise ParseError(
-            f"{stmt.key} = {text}: a time must not be negative",
-            location=at(filename, token),
-        )
-    unit = match.group(2)
-    return value * _UNIT_SCALE[unit] if unit and unit != "s" else value
+        return "a time must not be negative"
+    converted = float(value)
+    if math.isinf(converted):
+        return f"out of range: a time is at most {_LARGEST_TIME:.4g} s"
+    if converted == 0 and value != 0:
+        return f"out of range: a non-zero time is at least {_SMALLEST_TIME:.4g} s"
+    return None
+
+
+_LARGEST_TIME = sys.float_info.max
+_SMALLEST_TIME = math.ulp(0.0)  # the smallest positive float (a subnormal)
 
 
 def integer(stmt: Stmt, filename: str, ctx: ImportContext) -> int:

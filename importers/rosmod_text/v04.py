@@ -30,6 +30,7 @@ from rosaadl.importers.rosmod_text.statements import (
     new,
     new_property,
     scheme_literal,
+    time_problem,
 )
 
 __all__ = ["looks_like_json", "read_v04"]
@@ -175,14 +176,15 @@ class _Reader:
         if value in (None, ""):
             return None
         try:
-            return Decimal(str(value))
+            number = Decimal(str(value))
         except InvalidOperation:
-            self.ctx.error(
-                ParseError(
-                    f"{where}: expected a number of seconds, found {value!r}", file=self.shown, path=where
-                )
-            )
-            return None
+            problem = "expected a number of seconds"
+        else:
+            problem = time_problem(number)
+            if problem is None:
+                return number
+        self.ctx.error(ParseError(f"{where}: {problem}, found {value!r}", file=self.shown, path=where))
+        return None
 
     def integer(self, value: Any, where: str) -> int | None:
         if value in (None, ""):

@@ -21,7 +21,7 @@ from pyecore.ecore import EObject
 from rosaadl import model
 from rosaadl.errors import ImportFormatError, Location, RosaadlError
 from rosaadl.importers.rosmod_text.context import ImportContext
-from rosaadl.importers.rosmod_text.statements import MAX_INTEGER, SCHEMES, scheme_literal
+from rosaadl.importers.rosmod_text.statements import MAX_INTEGER, SCHEMES, scheme_literal, time_problem
 from rosaadl.importers.rosmod_webgme.tree import Node, Tree
 
 __all__ = ["SKIPPED_KINDS", "Mapper", "text", "type_name"]
@@ -138,6 +138,10 @@ class Mapper:
             return None
         if not number.is_finite() or number < 0:
             self.error(node, f"{attr} = {value!r}: expected a non-negative number of seconds")
+            return None
+        problem = time_problem(number)
+        if problem is not None:
+            self.error(node, f"{attr} = {value!r}: {problem}")
             return None
         return number
 

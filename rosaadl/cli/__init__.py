@@ -101,9 +101,10 @@ def _register() -> None:
         import_,
         instantiate,
         library,
+        run,
     )
 
-    for module in (check, import_, convert, instantiate, analyze, deploy, export, generate, library, demo):
+    for module in (check, import_, convert, instantiate, analyze, deploy, export, generate, run, library, demo):
         cli.add_command(module.command)
 
 

@@ -16,9 +16,7 @@ from rosaadl.cli.common import (
     pass_options,
     root_option,
 )
-from rosaadl.cli.inputs import Inputs, choose_instance, read_aadl_inputs
-from rosaadl.errors import Diagnostic, UsageError
-from rosaadl.fileio import existing
+from rosaadl.cli.inputs import choose_instance, read_generator_inputs
 
 __all__ = ["command"]
 
@@ -26,26 +24,6 @@ __all__ = ["command"]
 @click.group("generate")
 def command() -> None:
     """Generate code from a model."""
-
-
-def _rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
-    """A ROSMOD project converted to AADL, with the library, and the conversion's trace."""
-    from rosaadl.formats import read_input
-    from rosaadl.importers.aadl_text import read_files
-    from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
-    from rosaadl.workflow.workspace import library_unit_names
-
-    loaded = read_input(path, project=project)
-    if len(loaded.roots) > 1:
-        names = ", ".join(r.name for r in loaded.roots)
-        raise UsageError(
-            f"the input holds several projects ({names}); choose one with --project", file=str(path)
-        )
-    converted = rosmod_to_aadl(loaded.root, reserved_units=library_unit_names())
-    warnings: list[Diagnostic] = list(loaded.warnings) + list(converted.warnings)
-    workspace = read_files([], warnings=warnings, check=False)
-    workspace.units.extend(list(converted.model.units))
-    return Inputs(workspace, warnings), converted.trace
 
 
 @command.command("rclpy")
@@ -79,16 +57,8 @@ def generate_rclpy(
     """ament_python packages (one Node per AADL process), interfaces and launch files (inputs: AADL
     text, a rosaadl model, an .aaxl2, or a ROSMOD project converted on the way)."""
     from rosaadl.exporters.rclpy import GenerationOptions, generate_workspace
-    from rosaadl.formats import reader_for
 
-    for path in inputs:
-        if not existing(path):
-            raise UsageError("no such file or folder", file=str(path))
-    rosmod_trace = None
-    if len(inputs) == 1 and reader_for(inputs[0]).name in ("rosmod", "webgme"):
-        loaded, rosmod_trace = _rosmod_inputs(inputs[0], project)
-    else:
-        loaded = read_aadl_inputs(list(inputs), lenient=lenient)
+    loaded, rosmod_trace = read_generator_inputs(inputs, project=project, lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient)
     report = Report()
     result = generate_workspace(

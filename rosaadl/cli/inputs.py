@@ -17,7 +17,7 @@ from rosaadl.errors import Diagnostic, UsageError
 from rosaadl.fileio import existing
 from rosaadl.formats import read_input, reader_for
 
-__all__ = ["Inputs", "read_aadl_inputs", "choose_instance"]
+__all__ = ["Inputs", "read_aadl_inputs", "read_rosmod_inputs", "read_generator_inputs", "choose_instance"]
 
 _AADL_SUFFIXES = (".aadl", ".aadl2")
 
@@ -99,3 +99,36 @@ def choose_instance(
         choices = ", ".join(i.classifier or i.name for i in existing)
         raise UsageError(f"the input holds several instances ({choices}); choose one with --root")
     raise UsageError("--root is required: name the system implementation to instantiate (Pkg::Sys.impl)")
+
+
+def read_rosmod_inputs(path: Path, project: str | None) -> tuple[Inputs, object]:
+    """A ROSMOD project converted to AADL, with the library, and the conversion's trace."""
+    from rosaadl.formats import read_input
+    from rosaadl.importers.aadl_text import read_files
+    from rosaadl.transforms.rosmod_to_aadl import rosmod_to_aadl
+    from rosaadl.workflow.workspace import library_unit_names
+
+    loaded = read_input(path, project=project)
+    if len(loaded.roots) > 1:
+        names = ", ".join(r.name for r in loaded.roots)
+        raise UsageError(
+            f"the input holds several projects ({names}); choose one with --project", file=str(path)
+        )
+    converted = rosmod_to_aadl(loaded.root, reserved_units=library_unit_names())
+    warnings: list[Diagnostic] = list(loaded.warnings) + list(converted.warnings)
+    workspace = read_files([], warnings=warnings, check=False)
+    workspace.units.extend(list(converted.model.units))
+    return Inputs(workspace, warnings), converted.trace
+
+
+def read_generator_inputs(
+    paths: Sequence[Path], *, project: str | None = None, lenient: bool = False
+) -> tuple[Inputs, object]:
+    """The inputs of a verb that generates code: AADL (see :func:`read_aadl_inputs`), or one
+    ROSMOD project converted on the way (with the conversion's trace; None for AADL)."""
+    for path in paths:
+        if not existing(path):
+            raise UsageError("no such file or folder", file=str(path))
+    if len(paths) == 1 and reader_for(paths[0]).name in ("rosmod", "webgme"):
+        return read_rosmod_inputs(paths[0], project)
+    return read_aadl_inputs(list(paths), lenient=lenient), None

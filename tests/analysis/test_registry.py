@@ -74,6 +74,7 @@ def test_the_built_in_analyses_are_registered_in_report_order() -> None:
         "schedulability",
         "simulation",
         "latency",
+        "executor",
         "deployment",
         "compare",
     }

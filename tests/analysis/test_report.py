@@ -84,7 +84,15 @@ def test_json_document_shape():
     report = run_analyses(robot())
     data = json.loads(report.to_json())
     assert list(data) == ["ok", "analyses", "errors", "warnings"]
-    assert list(data["analyses"]) == ["cpu", "budget", "bus", "schedulability", "simulation", "latency"]
+    assert list(data["analyses"]) == [
+        "cpu",
+        "budget",
+        "bus",
+        "schedulability",
+        "simulation",
+        "latency",
+        "executor",
+    ]
     (proc,) = data["analyses"]["cpu"]["processors"]
     assert list(proc) == ["path", "capacity_mips", "demand_mips", "load_percent", "threads"]
     assert proc == {

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 import zipfile
 from pathlib import Path
 
@@ -178,3 +179,93 @@ def test_a_corrupted_generation_trace_is_a_located_error_with_the_way_on(tmp_pat
     (out / MANIFEST_NAME).unlink()
     assert run(args, capsys)[0] == 0
     json.loads((out / MANIFEST_NAME).read_text())  # the next trace is whole again
+
+
+# --------------------------------------------------------------------------- ROSMOD times out of range
+
+_V01 = """workspace WS;
+package robot
+{
+    components
+    {
+        component Sensor
+        {
+            timer Sample { period = PERIOD; }
+        }
+    }
+}
+"""
+
+
+def _v04_project(period: object) -> str:
+    def element(kind: str, name: str, children: list, **attributes: object) -> dict:
+        pairs = [["name", name], *([key, value] for key, value in attributes.items())]
+        return {
+            "py/object": f"__main__.{kind}",
+            "attributes": {"__reduce__": [{}, {"py/tuple": [pairs]}]},
+            "children": {"_inner": children},
+        }
+
+    timer = element("Timer", "tick", [], period=period, priority=50)
+    component = element("Component", "Sensor", [timer])
+    software = element("Software", "sw", [element("Package", "robot", [component])])
+    return json.dumps(element("Project", "p", [software]), indent=1)
+
+
+@pytest.mark.parametrize(
+    ("period", "words"),
+    [
+        ("1e309", ["out of range", "at most 1.798e+308 s"]),
+        ("1e-400", ["out of range", "at least"]),
+    ],
+)
+@pytest.mark.parametrize("dialect", ["v0.1", "v0.2", "v0.3"])
+def test_rosmod_text_time_out_of_the_float_range(tmp_path, capsys, dialect, period, words):
+    """A time that overflows to infinity (or underflows to zero) as a float is a located error."""
+    if dialect == "v0.1":
+        given = path = tmp_path / "input.rosml"
+        path.write_text(_V01.replace("PERIOD", period))
+    elif dialect == "v0.2":
+        given = tmp_path / "v02"
+        given.mkdir()
+        path = given / "workspace.rml"
+        path.write_text(_V01.removeprefix("workspace WS;\n").replace("PERIOD", period + "s"))
+    else:
+        given = tmp_path / "tracking"
+        shutil.copytree(TRACKING, given)
+        path = given / "01-Software" / "tracking.rml"
+        text, count = re.subn(r"period = [\d.]+;", f"period = {period};", path.read_text(), count=1)
+        assert count == 1
+        path.write_text(text)
+    out = tmp_path / "out.xmi"
+    line = assert_located_failure(["import", str(given), "-o", str(out)], capsys, path, "period", *words)
+    assert re.search(rf"{path.name}:\d+:\d+: ", line), line
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("period", "words"),
+    [
+        ('"1e309"', ["out of range"]),
+        ("1e309", ["expected a finite number of seconds"]),  # JSON reads it as infinity
+        ('"NaN"', ["expected a finite number of seconds"]),
+        ('"-1"', ["must not be negative"]),
+        ('"1e-400"', ["out of range"]),
+    ],
+)
+def test_rosmod_v04_time_out_of_range(tmp_path, capsys, period, words):
+    folder = tmp_path / "v04"
+    folder.mkdir()
+    text = _v04_project("PERIOD").replace('"PERIOD"', period)
+    (folder / "x.rml").write_text(text)
+    out = tmp_path / "out.xmi"
+    line = assert_located_failure(["import", str(folder), "-o", str(out)], capsys, folder / "x.rml", *words)
+    assert "Project/robot/Sensor/tick" in line, line
+    assert not out.exists()
+
+
+def test_rosmod_v04_time_in_range_is_read(tmp_path, capsys):
+    folder = tmp_path / "v04"
+    folder.mkdir()
+    (folder / "x.rml").write_text(_v04_project("1e300"))
+    assert run(["check", str(folder)], capsys)[0] == 0

@@ -31,7 +31,7 @@ from rosaadl.importers.aadl_text import read_files
 from rosaadl.transforms.instantiate import instantiate
 
 SYSTEMS = Path(rosaadl.library.__file__).resolve().parent / "systems"
-SECTIONS = ["findings", "architecture", "cpu", "bus", "schedule", "latency", "tables"]
+SECTIONS = ["findings", "architecture", "cpu", "bus", "schedule", "latency", "executors", "tables"]
 CHARTS = {
     "architecture": "chart-architecture",
     "cpu": "chart-cpu",
@@ -88,6 +88,9 @@ def test_every_section_and_chart_is_there(analysed, name):
         assert svg.get("viewbox") == f"0 0 {svg.get('width')} {svg.get('height')}"
         assert len(_drawn(svg)) >= 15, f"{section_id} chart draws almost nothing"
         assert svg.find("title") is not None and svg.find("title").text
+    # the executors: chain bars and the executors' Gantt chart
+    classes = [svg.get("class").split() for svg in doc.get_element_by_id("executors").findall(".//svg")]
+    assert [c for c in classes if "chart-chains" in c] and [c for c in classes if "chart-executors" in c]
     # the tables behind the charts
     tables = doc.get_element_by_id("tables").findall(".//table")
     assert len(tables) >= 8
@@ -411,7 +414,8 @@ def test_every_corpus_instance_gives_a_complete_page(corpus):
         html, data = render_report(model, report)
         doc = _doc(html)
         assert [s.get("id") for s in doc.iter("section")] == SECTIONS, path
-        assert len(list(doc.iter("svg"))) == len(CHARTS), path
+        executor_charts = 2 if report.result("executor") is not None else 0  # chains, executors
+        assert len(list(doc.iter("svg"))) == len(CHARTS) + executor_charts, path
         assert not re.search(r"https?:", html, re.IGNORECASE), path
         view = json.loads(data)
         assert view["ok"] == report.ok, path
@@ -567,7 +571,7 @@ def test_report_renders_in_headless_chromium(analysed, tmp_path):
     assert dom.returncode == 0, dom.stderr.decode(errors="replace")[-2000:]
     parsed = _doc(dom.stdout.decode("utf-8"))
     assert [s.get("id") for s in parsed.iter("section")] == SECTIONS
-    assert len(list(parsed.iter("svg"))) == len(CHARTS)
+    assert len(list(parsed.iter("svg"))) == len(CHARTS) + 2  # and the executors' two charts
     # 2. the laid-out page, measured by a script in a copy of it (the report itself has none)
     measured = html_path.with_name("measured.html")
     measured.write_text(
@@ -581,7 +585,7 @@ def test_report_renders_in_headless_chromium(analysed, tmp_path):
     for section in layout["sections"]:
         assert section["w"] > 900 and section["h"] > 100, section
     assert layout["width"] <= 1280, "the page scrolls sideways"
-    assert sorted(s["section"] for s in layout["svgs"]) == sorted(CHARTS)
+    assert sorted(s["section"] for s in layout["svgs"]) == sorted([*CHARTS, "executors", "executors"])
     for svg in layout["svgs"]:
         assert svg["w"] > 900 and svg["h"] > 80, svg
         assert svg["bw"] > 500 and svg["bh"] > 50, svg  # what is drawn, not just the canvas

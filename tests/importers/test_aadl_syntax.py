@@ -33,7 +33,7 @@ CATEGORIES = [
 
 
 def test_public_api() -> None:
-    assert aadl_syntax.__all__ == ["parse", "AADL_GRAMMAR"]
+    assert aadl_syntax.__all__ == ["parse", "decode", "AADL_GRAMMAR"]
     assert (ROOT / "importers" / "aadl.lark").read_text(encoding="utf-8") == aadl_syntax.AADL_GRAMMAR
     lark = aadl_syntax._reader().lark
     assert lark.options.parser == "lalr"

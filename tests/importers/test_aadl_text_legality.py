@@ -153,6 +153,39 @@ def test_property_set_rules() -> None:
         read_string("property set Q is end R;", "q.aadl")
 
 
+def test_errors_of_parts_built_while_parsing_keep_the_order_of_a_whole_tree() -> None:
+    """Classifiers are built as soon as they are parsed: a package's own errors still come
+    before those of its members, the category rule still spans the package, a syntax error
+    anywhere still wins over a literal out of range before it, and a private classifier is
+    private."""
+    text = (
+        "package P\npublic\n  thread T end T;\n  process implementation T.i subcomponents b: bus; end T.i;\n"
+        "end Q;\npackage R\npublic\n  system S end S;\nprivate\n  system X end Y;\nend R;\n"
+    )
+    with pytest.raises(ValidationError) as info:
+        read_string(text, "order.aadl")
+    assert [(e.location.line, e.message.split(":")[0]) for e in info.value.errors] == [
+        (5, "package P ends with 'end Q'"),
+        (4, "a process implementation cannot contain bus subcomponents (b); it can contain"),
+        (4, "process implementation T.i implements thread type T"),
+        (10, "system type X ends with 'end Y'"),
+    ]
+    model = read_string("package R\npublic\n  system S end S;\nprivate\n  system X end X;\nend R;\n")
+    assert [(c.name, c.visibility.name) for c in model.units[0].classifiers] == [
+        ("S", "public"),
+        ("X", "private"),
+    ]
+    late = (
+        "package P\npublic\n  data D properties Data_Size => 1e999 Bytes; end D;\n  system S end;\nend P;\n"
+    )
+    with pytest.raises(AadlSyntaxError, match="unexpected ';'") as syntax:
+        read_string(late, "late.aadl")
+    assert (syntax.value.location.line, syntax.value.location.column) == (4, 15)
+    with pytest.raises(AadlSyntaxError, match="does not fit in 64 bits") as literal:
+        read_string(late.replace("end;", "end S;"), "late.aadl")
+    assert literal.value.location.line == 3
+
+
 def test_names_declared_twice_are_warnings() -> None:
     text = _pkg("system S features a: in data port; a: out data port; end S;\nsystem S end S;")
     warnings: list = []

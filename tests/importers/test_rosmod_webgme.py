@@ -326,6 +326,30 @@ def test_message_definition_errors_are_located(tmp_path):
     assert "Definition: malformed field type" in err.message
 
 
+@pytest.mark.parametrize(
+    ("period", "fragment"),
+    [
+        ("1e309", "out of range: a time is at most"),  # a finite decimal that overflows as a float
+        ("1e-400", "out of range: a non-zero time is at least"),
+        ("Infinity", "expected a non-negative number of seconds"),
+    ],
+)
+def test_times_out_of_the_float_range_are_located_errors(tmp_path, period, fragment):
+    tree = demo_tree()
+    tick = tree["children"]["a"]["children"]["s"]["children"]["p"]["children"]["c"]["children"]["t"]
+    tick["atr"]["Period"] = period
+    (err,) = import_error(write_export(tmp_path / "bad.webgmex", build_export(tree)))
+    assert err.location.path == "Projects/Demo/Software/nav/Planner/tick"
+    assert err.message.startswith(f"Period = {period!r}: ") and fragment in err.message, err.message
+
+
+def test_a_json_number_that_overflows_is_a_located_error(tmp_path):
+    text = json.dumps(build_export()).replace('"Period": 0.1', '"Period": 1e309', 1)
+    assert "1e309" in text
+    (err,) = import_error(write_export(tmp_path / "bad.webgmex", text.encode()))
+    assert err.location.path == "Projects/Demo/Software/nav/Planner/tick" and "Period = inf" in err.message
+
+
 def test_instance_of_no_software_component(tmp_path):
     tree = demo_tree()
     project = tree["children"]["a"]

@@ -1,0 +1,348 @@
+"""One run of a generated application: generate, build, start, watch, stop, and what was seen.
+
+:func:`prepare_run` generates the workspace of a model into a run folder (``RUN_DIR/src``, as
+``rosaadl generate rclpy`` does: user code is kept across regenerations) and saves its run plan;
+:func:`run_application` builds it with colcon, starts the topic monitor and then every node as
+the deployment's launch file describes, lets them run, stops them (SIGINT, then SIGTERM and
+SIGKILL after a grace period) and compares what flowed with the model.
+
+The run folder holds ``src`` (the packages), ``build``/``install``/``log`` (colcon's),
+``build.log``, ``rosaadl-run.json`` (the run plan) and ``run/`` (each node's output, the
+monitor's output and counts).
+
+A run is *ok* when every node started, ran to the stop and exited 0 on SIGINT, every message
+type could be loaded, and, with ``emulate``, every topic some node of the model publishes on
+carried at least one message. A measured rate more than :data:`RATE_TOLERANCE` away from the
+modelled one, a node that needed SIGTERM or SIGKILL, a core of the model that does not exist
+here or a real-time priority that cannot be set are warnings.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pyecore.ecore import EObject
+
+from rosaadl.errors import Diagnostic, Location
+from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generate_workspace
+from rosaadl.workflow.run.cores import machine, node_prefix, shared_cpus
+from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
+from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
+from rosaadl.workflow.run.plan import RunError, RunPlan, TopicPlan, run_plan, save_plan
+from rosaadl.workflow.run.processes import GRACE_SECONDS, NodeProcess, node_command, start_node, stop_nodes
+
+__all__ = [
+    "RATE_TOLERANCE",
+    "EMULATE_PARAMETER",
+    "RUN_LOGS",
+    "RunOptions",
+    "NodeResult",
+    "TopicResult",
+    "RunResult",
+    "prepare_run",
+    "run_application",
+]
+
+#: Relative difference between a measured and a modelled rate beyond which a warning is given.
+RATE_TOLERANCE = 0.10
+#: The node parameter switching the generated workload twin on.
+EMULATE_PARAMETER = "rosaadl.emulate"
+#: The folder of the run folder holding the nodes' and the monitor's output.
+RUN_LOGS = "run"
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How long and how to run."""
+
+    duration: float
+    emulate: bool = False
+    realtime: bool = True  # apply the model's real-time scheduling (chrt) where permitted
+    build: bool = True
+    startup: float = 60.0  # seconds the nodes have to come up in the ROS graph (before ``duration``)
+    grace: float = GRACE_SECONDS
+
+
+@dataclass
+class NodeResult:
+    name: str
+    started: bool
+    exit_code: int | None
+    stopped_by: str
+    command: list[str]
+    log: str
+
+
+@dataclass
+class TopicResult:
+    name: str
+    type: str
+    messages: int
+    rate_hz: float | None
+    model_rate_hz: float | None
+    bytes_per_message: float | None
+    model_bytes: int | None
+
+
+@dataclass
+class RunResult:
+    """What a run saw."""
+
+    folder: Path
+    duration: float
+    nodes: list[NodeResult] = field(default_factory=list)
+    topics: list[TopicResult] = field(default_factory=list)
+    errors: list[Diagnostic] = field(default_factory=list)
+    warnings: list[Diagnostic] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not self.errors
+
+    def data(self) -> dict:
+        """The verb's JSON fields (besides ``ok``, ``errors`` and ``warnings``)."""
+        return {
+            "run_folder": str(self.folder),
+            "duration_s": self.duration,
+            "nodes": [
+                {
+                    "name": n.name,
+                    "started": n.started,
+                    "exit_code": n.exit_code,
+                    "stopped_by": n.stopped_by or None,
+                    "log": n.log,
+                }
+                for n in self.nodes
+            ],
+            "topics": [
+                {
+                    "name": t.name,
+                    "type": t.type,
+                    "messages": t.messages,
+                    "rate_hz": t.rate_hz,
+                    "model_rate_hz": t.model_rate_hz,
+                    "bytes_per_message": t.bytes_per_message,
+                    "model_bytes": t.model_bytes,
+                }
+                for t in self.topics
+            ],
+        }
+
+
+def prepare_run(
+    instance: EObject,
+    folder: Path,
+    *,
+    rosmod_trace: EObject | None = None,
+    options: GenerationOptions | None = None,
+) -> tuple[RunPlan, GenerationResult]:
+    """Generate the workspace of ``instance`` into ``folder/src`` and save its run plan."""
+    result = generate_workspace(instance, folder / "src", rosmod_trace=rosmod_trace, options=options)
+    plan = run_plan(result.plan)
+    save_plan(plan, folder)
+    return plan, result
+
+
+def _diagnostic(severity: str, message: str, path: str | None = None, file: str | None = None) -> Diagnostic:
+    return Diagnostic(severity, message, Location(file=file, path=path))
+
+
+def _exit_code(code: int | None) -> int | None:
+    """A process's exit code as a shell gives it (128 + N when signal N ended it)."""
+    return 128 - code if code is not None and code < 0 else code
+
+
+def run_application(
+    folder: Path,
+    plan: RunPlan,
+    options: RunOptions,
+    progress: Callable[[str], None] = lambda _: None,
+) -> RunResult:
+    """Build, start, watch and stop the application of ``folder`` (see the module docstring).
+
+    A missing ROS 2 runtime, a failed build or a monitor that cannot start is a :class:`RunError`;
+    what the nodes and topics did is in the result. An interrupt (``KeyboardInterrupt`` or the
+    CLI's own) stops every node before it goes on.
+    """
+    require_ros()
+    result = RunResult(folder=folder, duration=options.duration)
+    if options.build:
+        progress(f"building {folder / 'src'} with colcon")
+        began = time.monotonic()
+        install = colcon_build(folder)
+        progress(f"built in {time.monotonic() - began:.1f} s")
+    else:
+        install = folder / "install"
+        if not (install / "lib").is_dir():
+            raise RunError("the run folder has not been built: run it without --no-build", file=str(folder))
+    env = run_environment(install)
+    logs = folder / RUN_LOGS
+    logs.mkdir(exist_ok=True)
+    here = machine(realtime=options.realtime)
+    monitor: subprocess.Popen | None = None
+    processes: list[NodeProcess] = []
+    counts_file = logs / "monitor.json"
+    try:
+        monitor = start_monitor(plan.topics, [n.full_name for n in plan.nodes], counts_file, env, folder)
+        extra = [(EMULATE_PARAMETER, True)] if options.emulate else []
+        shared = shared_cpus(plan.nodes, here)
+        for node in plan.nodes:
+            prefix, warnings = node_prefix(node, here, shared)
+            result.warnings.extend(_diagnostic("warning", w, node.path) for w in warnings)
+            command = node_command(node, install, prefix, extra)
+            processes.append(start_node(node, command, env, logs, folder))
+            progress(f"started {node.full_name}" + (f" ({' '.join(prefix)})" if prefix else ""))
+        _run_for(processes, counts_file, options, progress)
+        stop_monitor(monitor)
+        progress(f"stopping {len(processes)} node(s)")
+        stop_nodes(processes, grace=options.grace)
+    finally:
+        if monitor is not None and monitor.poll() is None:
+            stop_monitor(monitor)
+        stop_nodes([p for p in processes if p.running()], grace=options.grace)
+    counts = _counts(result, counts_file)
+    for process in processes:
+        process.started = process.node.full_name in counts.get("nodes", {})
+    _node_results(result, processes, options)
+    _topic_results(result, plan.topics, counts.get("topics", {}), options)
+    return result
+
+
+def _counts(result: RunResult, counts_file: Path) -> dict:
+    try:
+        counts = json.loads(counts_file.read_text(encoding="utf-8"))
+        if isinstance(counts, dict):
+            return counts
+    except (OSError, ValueError):
+        pass
+    result.errors.append(
+        _diagnostic(
+            "error", "the topic monitor wrote no counts", file=str(counts_file.parent / "monitor.log")
+        )
+    )
+    return {}
+
+
+def _run_for(
+    processes: list[NodeProcess], counts_file: Path, options: RunOptions, progress: Callable[[str], None]
+) -> None:
+    """Wait until every node is up in the ROS graph (at most ``options.startup`` seconds, less
+    when a node ends), then let them run ``options.duration`` seconds."""
+    names = {p.node.full_name for p in processes}
+    deadline = time.monotonic() + options.startup
+    began = time.monotonic()
+    while time.monotonic() < deadline and all(p.running() for p in processes):
+        if names <= nodes_up(counts_file):
+            break
+        time.sleep(0.05)
+    up = nodes_up(counts_file)
+    missing = sorted(names - up)
+    progress(
+        f"{len(names & up)} of {len(names)} node(s) up in {time.monotonic() - began:.1f} s"
+        + (f" (not: {', '.join(missing)})" if missing else "")
+    )
+    progress(f"running {options.duration:g} s" + (" with the workload twin" if options.emulate else ""))
+    end = time.monotonic() + options.duration
+    while time.monotonic() < end:
+        time.sleep(0.05)
+
+
+def _node_results(result: RunResult, processes: list[NodeProcess], options: RunOptions) -> None:
+    for process in processes:
+        node = process.node
+        code = _exit_code(process.exit_code)
+        result.nodes.append(
+            NodeResult(
+                name=node.full_name,
+                started=process.started,
+                exit_code=code,
+                stopped_by=process.stopped_by,
+                command=process.command,
+                log=str(process.log),
+            )
+        )
+        result.warnings.extend(_diagnostic("warning", w, node.path) for w in process.warnings)
+        if not process.started:
+            how = (
+                f"it exited with code {code}"
+                if process.stopped_by == ""
+                else f"it did not come up in the ROS graph within {options.startup:g} s"
+            )
+            result.errors.append(
+                _diagnostic(
+                    "error",
+                    f"node {node.full_name} did not start: {how}:\n{tail(process.log)}",
+                    node.path,
+                    str(process.log),
+                )
+            )
+        elif process.stopped_by == "":
+            result.errors.append(
+                _diagnostic(
+                    "error",
+                    f"node {node.full_name} ended during the run with code {code}:\n{tail(process.log)}",
+                    node.path,
+                    str(process.log),
+                )
+            )
+        elif code != 0:
+            result.errors.append(
+                _diagnostic(
+                    "error",
+                    f"node {node.full_name} exited with code {code} when stopped:\n{tail(process.log)}",
+                    node.path,
+                    str(process.log),
+                )
+            )
+
+
+def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, options: RunOptions) -> None:
+    for topic in topics:
+        entry = counts.get(topic.name, {})
+        messages, rate, size = topic_counts(entry)
+        result.topics.append(
+            TopicResult(
+                name=topic.name,
+                type=topic.type,
+                messages=messages,
+                rate_hz=rate,
+                model_rate_hz=topic.model_rate_hz,
+                bytes_per_message=size,
+                model_bytes=topic.model_bytes,
+            )
+        )
+        where = f"topic {topic.name}"
+        if entry.get("error"):
+            result.errors.append(_diagnostic("error", f"{where}: {entry['error']}"))
+            continue
+        if not topic.publishers:
+            result.warnings.append(
+                _diagnostic(
+                    "warning", f"{where}: no node of the model publishes on it (an input from outside)"
+                )
+            )
+            continue
+        if messages == 0:
+            if options.emulate:
+                result.errors.append(
+                    _diagnostic(
+                        "error",
+                        f"{where}: no message in {options.duration:g} s (published by "
+                        f"{', '.join(topic.publishers)})",
+                    )
+                )
+            continue
+        if options.emulate and topic.model_rate_hz and rate is not None:
+            off = abs(rate - topic.model_rate_hz) / topic.model_rate_hz
+            if off > RATE_TOLERANCE:
+                result.warnings.append(
+                    _diagnostic(
+                        "warning",
+                        f"{where}: {rate:g} Hz measured, {topic.model_rate_hz:g} Hz modelled ({off:.0%} off)",
+                    )
+                )

@@ -1,0 +1,150 @@
+"""Executors on small instances: grouping, kinds, ROSMOD queues, ROS 2 kinds, bad values."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from instance_builders import component, num, pa, ref, span
+
+from rosaadl import model
+from rosaadl.analysis.executor_analysis import analyze_executors
+
+new = model.new
+
+
+def enum(name):
+    return new("NamedValue", name=name)
+
+
+def callback(name, period, cet, *, kind=None, dispatch="Periodic", priority=None, deadline=None):
+    props = [pa("Thread_Properties::Dispatch_Protocol", enum(dispatch))]
+    if period is not None:
+        props.append(pa("Timing_Properties::Period", num(period, "us")))
+    if cet is not None:
+        props.append(pa("Timing_Properties::Compute_Execution_Time", span(cet, cet)))
+    if kind:
+        props.append(pa("ROS_Properties::Thread_Kind", enum(kind)))
+    if priority is not None:
+        props.append(pa("Thread_Properties::Priority", new("IntegerValue", value=priority)))
+    if deadline is not None:
+        props.append(pa("Timing_Properties::Deadline", num(deadline, "us")))
+    return component(name, "thread", props=props)
+
+
+def system(*processes):
+    """A system of ``processes`` whose threads are all bound to one processor."""
+    cpu = component("cpu", "processor")
+    root = new("SystemInstance", name="app_i_Instance", category="system")
+    root.componentInstances.append(cpu)
+    root.componentInstances.extend(processes)
+    for process in processes:
+        for ci in model.component_instances(process):
+            if (
+                ci.componentInstances is not None
+                and not ci.componentInstances
+                and ci.name not in ("callback_queue",)
+            ):
+                ci.ownedPropertyAssociations.append(
+                    pa("Deployment_Properties::Actual_Processor_Binding", ref(cpu))
+                )
+    return root
+
+
+def rosmod_component(scheme):
+    """A ROSMOD component instance: a (T=10, C=4, D=10, P=2) and b (T=15, C=5, D=8, P=1) in ms."""
+    a = callback("a", 10_000, 4_000, priority=2)
+    b = callback("b", 15_000, 5_000, dispatch="Sporadic", priority=1, deadline=8_000)
+    props = [pa("ROSMOD_Properties::Scheduling_Scheme", enum(scheme))] if scheme else []
+    group = component("comp", "threadGroup", component("callback_queue", "data"), a, b, props=props)
+    return component("node", "process", group)
+
+
+def wcrts(result):
+    return {c.path.rpartition(".")[2]: c.wcrt for c in result.callbacks}
+
+
+def test_rosmod_component_queues_give_the_hand_checked_bounds():
+    """The worked example of test_executor_response, in ms here: the blocking by a job that
+    started just before is one time unit (1 µs) short of its WCET, hence 8999."""
+    expected = {"FIFO": (9000, 9000), "PFIFO": (8999, 9000), "EDF": (9000, 8999), None: (9000, 9000)}
+    for scheme, (a, b) in expected.items():
+        result = analyze_executors(system(rosmod_component(scheme)))
+        (executor,) = result.executors
+        assert executor.kind == "rosmod" and executor.scheme == (scheme or "FIFO")
+        assert wcrts(result) == {"a": a, "b": b}
+
+
+def test_unknown_scheme_is_a_located_warning_and_fifo():
+    result = analyze_executors(system(rosmod_component("LIFO")))
+    assert result.executors[0].scheme == "FIFO"
+    assert any(
+        "scheduling scheme" in d.message and d.location.path.endswith("comp") for d in result.diagnostics
+    )
+
+
+def test_ros2_node_kinds_order_and_single_threaded_bound():
+    timer = callback("tick", 10_000, 2_000, kind="Timer")
+    sub = callback("on_msg", 20_000, 3_000, kind="Subscriber", dispatch="Sporadic")
+    spinner = callback("spin", 10_000, 1_000, kind="Spinner", dispatch="Sporadic")
+    node = component("node", "process", timer, sub, spinner,
+                     props=[pa("ROS_Properties::Executor_Kind", enum("Single_Threaded"))])  # fmt: skip
+    result = analyze_executors(system(node))
+    (executor,) = result.executors
+    assert executor.kind == "single_threaded" and executor.threads == 1
+    assert [(c.path.rpartition(".")[2], c.kind) for c in executor.callbacks] == [
+        ("tick", "timer"), ("on_msg", "subscription"),
+    ]  # fmt: skip
+    assert wcrts(result) == {"tick": 5000, "on_msg": 5000}
+    # the same node, multi-threaded (the default): the busy window, 5 ms for both
+    node.ownedPropertyAssociations.clear()
+    result = analyze_executors(system(node))
+    assert result.executors[0].kind == "multi_threaded"
+    assert wcrts(result) == {"tick": 5000, "on_msg": 5000}
+
+
+def test_an_overloaded_executor_has_no_bound_and_says_so():
+    a = callback("a", 10_000, 6_000)
+    b = callback("b", 10_000, 6_000)
+    result = analyze_executors(system(component("node", "process", a, b)))
+    assert wcrts(result) == {"a": None, "b": None}
+    assert not result.ok
+    assert any("overloaded" in d.message and d.location.path.endswith(".a") for d in result.diagnostics)
+
+
+def test_a_higher_priority_node_on_the_core_preempts_the_executor():
+    low = component("low", "process", callback("a", 10_000, 2_000),
+                    props=[pa("Thread_Properties::Priority", new("IntegerValue", value=1))])  # fmt: skip
+    high = component("high", "process", callback("h", 7_000, 1_000),
+                     props=[pa("Thread_Properties::Priority", new("IntegerValue", value=5))])  # fmt: skip
+    result = analyze_executors(system(low, high))
+    assert wcrts(result) == {"a": 3000, "h": 1000}
+    assert Fraction(3000) == result.callbacks[0].wcrt
+
+
+def test_an_end_to_end_flow_is_a_chain_with_its_latency_as_deadline():
+    """Timer a (T=10 ms, C=2 ms) publishes to subscription b (C=3 ms) of a node of lower priority
+    on the same core (so R_b = 3 + 2 = 5 ms): reaction time = data age = T_a + R_a + R_b =
+    10 + 2 + 5 = 17 ms, over a 12 ms Latency: an error."""
+    out = new("FeatureInstance", name="o", feature="o", category="event data port", direction="out")
+    inp = new("FeatureInstance", name="i", feature="i", category="event data port", direction="in")
+    a = callback("a", 10_000, 2_000, kind="Timer")
+    a.featureInstances.append(out)
+    b = callback("b", None, 3_000, kind="Subscriber", dispatch="Sporadic")
+    b.featureInstances.append(inp)
+    high = [pa("Thread_Properties::Priority", new("IntegerValue", value=5))]
+    root = system(component("n1", "process", a, props=high), component("n2", "process", b))
+    conn = new(
+        "ConnectionInstance", name="n1.a.o -> n2.b.i", kind="portConnection", source=out, destination=inp
+    )
+    root.connectionInstances.append(conn)
+    flow = new("EndToEndFlowInstance", name="e2e", flow="e2e")
+    flow.flowElements.extend([a, conn, b])
+    flow.ownedPropertyAssociations.append(pa("Communication_Properties::Latency", span(0, 12_000)))
+    root.endToEndFlows.append(flow)
+    result = analyze_executors(root)
+    assert wcrts(result) == {"a": 2000, "b": 5000}  # b's arrivals: one per period of a
+    chains = {c.name: c for c in result.chains}
+    assert chains["e2e"].reaction_time == chains["e2e"].data_age == 17_000
+    assert chains["e2e"].met is False
+    assert any("exceeds its Latency 12000 us" in d.message for d in result.diagnostics)
+    assert chains["n1.a -> n2.b"].reaction_time == 17_000
