@@ -126,9 +126,12 @@ class ComparisonResult:
 
 
 def _below_root(path: str, root_name: str) -> str:
-    """An instance path without the root's name (``tracking_impl_Instance.a.b`` → ``a.b``)."""
+    """An instance path without the root's name (``tracking_impl_Instance.a.b`` → ``a.b``; a
+    root instance named as OSATE names them, ``<impl>_Instance``, also when it is another root's:
+    a run of one system measures the same processes as a system that extends it)."""
     head, dot, rest = path.partition(".")
-    return rest if dot and head.lower() == root_name.lower() else path
+    own = head.lower() == root_name.lower() or head.endswith("_Instance")
+    return rest if dot and own else path
 
 
 def _process_of(root: Any, thread_path: str) -> str | None:

@@ -172,3 +172,12 @@ def test_cli_refuses_a_truncated_measurements_file_with_a_located_error(tmp_path
 def test_compare_without_measurements_says_what_it_needs(tracking) -> None:
     report = run_analyses(tracking, "compare")
     assert any("needs measurements" in d.message for d in report.errors)
+
+
+def test_a_run_of_the_extended_system_matches_the_extending_one(tracking) -> None:
+    document = tracking_measurements()
+    for thread in document["threads"]:
+        thread["path"] = "tracking_base_Instance." + thread["path"]
+    result = _compare(tracking, document, "cpu,compare").result("compare")
+    item = result.item("rem_trk_sw.usbcam.image_broadcaster", "execution_time_us")
+    assert item.measured == 2330.0
