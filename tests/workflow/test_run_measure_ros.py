@@ -1,5 +1,5 @@
 """``rosaadl run --emulate --measure`` on a real ROS 2 runtime (``make ros``): the library's
-tracking example run once for 8 s (build included, about a minute on 2 cores), then the
+tracking example run once for 6 s (build included, about a minute on 2 cores), then the
 measurements held to the model (``analyze --compare``) and made into profiles (``add-profile``).
 """
 
@@ -20,7 +20,7 @@ pytestmark = [*runtime_marks(), pytest.mark.slow]
 
 SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
 ROOT = "sys_tracking::tracking.impl"
-DURATION = 8
+DURATION = 6
 #: The emulation fidelity the issue asks for: measured mean CPU time within 5 % of the CET.
 FIDELITY = 5.0
 
