@@ -122,24 +122,15 @@ def test_the_report_has_no_comparison_section_without_measurements(tracking) -> 
     assert 'id="compare"' not in html
 
 
+def _analyze_json(capsys, *args: str) -> tuple[int, dict]:
+    code = main(["--format", "json", "analyze", str(SYSTEMS), "--root", ROOT, *args])
+    return code, json.loads(capsys.readouterr().out)
+
+
 def test_cli_compare_in_json_exits_1_on_a_violated_bound(tmp_path, capsys) -> None:
     target = tmp_path / "measurements.json"
     target.write_text(tracking_measurements_text())
-    code = main(
-        [
-            "--format",
-            "json",
-            "analyze",
-            str(SYSTEMS),
-            "--root",
-            ROOT,
-            "--only",
-            "cpu",
-            "--compare",
-            str(target),
-        ]
-    )
-    document = json.loads(capsys.readouterr().out)
+    code, document = _analyze_json(capsys, "--only", "cpu", "--compare", str(target))
     assert code == 1
     assert set(document["analyses"]) == {"cpu", "compare"}
     assert document["analyses"]["compare"]["measurements"] == str(target)
@@ -150,21 +141,7 @@ def test_cli_refuses_a_truncated_measurements_file_with_a_located_error(tmp_path
     text = tracking_measurements_text()
     target.write_text(text[:300])
     out = tmp_path / "csv"
-    code = main(
-        [
-            "--format",
-            "json",
-            "analyze",
-            str(SYSTEMS),
-            "--root",
-            ROOT,
-            "--compare",
-            str(target),
-            "-o",
-            str(out),
-        ]
-    )
-    document = json.loads(capsys.readouterr().out)
+    code, document = _analyze_json(capsys, "--compare", str(target), "-o", str(out))
     assert code == 1 and not out.exists()
     assert document["errors"][0]["file"] == str(target) and document["errors"][0]["line"] is not None
 
