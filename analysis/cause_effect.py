@@ -42,6 +42,7 @@ __all__ = [
     "callback_links",
     "cause_effect_chains",
     "chain_bound",
+    "release_gaps",
     "flow_callbacks",
     "flow_deadline",
 ]
@@ -183,6 +184,43 @@ def cause_effect_chains(links: Sequence[ChainLink], limit: int = 100) -> list[li
     return chains
 
 
+def release_gaps(
+    links: Sequence[ChainLink], wcrt: Callable[[Callback], Fraction | None]
+) -> Callable[[Callback], Fraction | None]:
+    """The longest time between two releases of a callback (µs; None: unbounded or unknown): a
+    timer's period; a subscription fed over topics waits at most, for each writer ``w``, the
+    writer's own longest gap plus its response time ``R_w`` (the release jitter a writer passes on
+    is at most its response time); a callback no topic of the model feeds keeps its ``Period``
+    (the minimum inter-arrival time the model states). A cycle of subscriptions has no bound."""
+    writers: dict[int, list[Callback]] = {}
+    for link in links:
+        if link.connection is not None:
+            writers.setdefault(id(link.destination), []).append(link.source)
+    known: dict[int, Fraction | None] = {}
+
+    def gap(callback: Callback, visiting: frozenset[int] = frozenset()) -> Fraction | None:
+        key = id(callback)
+        if key in known:
+            return known[key]
+        if key in visiting:
+            return None
+        feeding = writers.get(key, [])
+        if callback.kind == "timer" or not feeding:
+            result = callback.period
+        else:
+            result = Fraction(0)
+            for writer in feeding:
+                before, response = gap(writer, visiting | {key}), wcrt(writer)
+                if before is None or response is None:
+                    result = None
+                    break
+                result = max(result, before + response)
+        known[key] = result
+        return result
+
+    return gap
+
+
 def chain_bound(
     name: str,
     callbacks: Sequence[Callback],
@@ -190,17 +228,36 @@ def chain_bound(
     wcrt: Callable[[Callback], Fraction | None],
     transmission: Callable[[Any], Fraction],
     deadline: Fraction | None = None,
+    gaps: Callable[[Callback], Fraction | None] | None = None,
 ) -> CauseEffectChain:
     """The reaction time and data age bound of the chain ``callbacks`` joined by ``links`` (see
-    the module doc): ``sum_k (T_k if the k-th callback is a timer) + R_k`` plus transmissions."""
+    the module doc): ``sum_k S_k + R_k`` plus transmissions. The sampling term ``S_k`` is the
+    period of a timer (a time-triggered link), 0 for a callback released by the chain's own
+    message over a topic (an event-triggered link), and otherwise — a callback that reads what
+    the previous one stored inside the node while another event releases it — the longest gap
+    between its releases (:func:`release_gaps`; Davare et al.'s ``T_k`` with the trigger's
+    jitter): the data waits at most until the reader's next release. An unknown gap leaves the
+    chain without a bound. ``gaps``: :func:`release_gaps` over every link of the model (by
+    default over the chain's own links only)."""
     total: Fraction | None = Fraction(0)
     sent = sum((transmission(link.connection) for link in links if link.connection is not None), Fraction(0))
-    for callback in callbacks:
+    gap = gaps or release_gaps(links, wcrt)
+    over_topic = {(id(link.source), id(link.destination)) for link in links if link.connection is not None}
+    for index, callback in enumerate(callbacks):
         response = wcrt(callback)
         if response is None or total is None:
             total = None
             continue
-        sampling = callback.period if callback.kind == "timer" and callback.period is not None else 0
+        triggered = index > 0 and (id(callbacks[index - 1]), id(callback)) in over_topic
+        if index == 0 and callback.kind != "timer":
+            sampling: Fraction | None = Fraction(0)  # released by the chain's input itself
+        elif triggered and callback.kind != "timer":
+            sampling = Fraction(0)
+        else:
+            sampling = gap(callback)
+        if sampling is None:
+            total = None
+            continue
         total += sampling + response
     if total is not None:
         total += sent

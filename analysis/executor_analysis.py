@@ -30,6 +30,7 @@ from rosaadl.analysis.cause_effect import (
     chain_bound,
     flow_callbacks,
     flow_deadline,
+    release_gaps,
 )
 from rosaadl.analysis.executor_simulation import periodic_releases, simulate_executor
 from rosaadl.analysis.executors import Callback, Executor, executors_from_instance
@@ -277,6 +278,7 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
         return bounds.get(callback.path)
 
     links = callback_links(root, everything, mode)
+    gaps = release_gaps(links, bound)
     chains = []
     reader = PropertyReader(diagnostics)
     for ci in _component_instances(root):
@@ -287,12 +289,12 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
                           if link.source is a and link.destination is b]  # fmt: skip
                 name = flow.flow or flow.name
                 chains.append(
-                    chain_bound(name, members, joined, bound, sent, flow_deadline(reader, flow, mode))
+                    chain_bound(name, members, joined, bound, sent, flow_deadline(reader, flow, mode), gaps)
                 )
     for path in cause_effect_chains(links, limit):
         members = [path[0].source] + [link.destination for link in path]
         name = " -> ".join(c.path.partition(".")[2] or c.path for c in (members[0], members[-1]))
-        chains.append(chain_bound(name, members, path, bound, sent))
+        chains.append(chain_bound(name, members, path, bound, sent, gaps=gaps))
     for chain in chains:
         if chain.met is False:
             diagnostics.append(

@@ -142,6 +142,35 @@ def _at(file: str, node: ast.AST) -> Location:
     return Location(file, getattr(node, "lineno", None), getattr(node, "col_offset", 0) + 1)
 
 
+_LAUNCH_NODE = ("launch_ros.actions.Node", "launch_ros.actions.node.Node")
+
+
+def _forwards(call: ast.Call) -> bool:
+    """Whether ``call`` passes on a ``**kwargs`` it received (``RosNode(**kwargs)``)."""
+    return any(k.arg is None and isinstance(k.value, ast.Name) for k in call.keywords)
+
+
+def _node_wrappers(tree: ast.Module, imports: dict[str, str]) -> list[str]:
+    """Module-level functions that take ``**kwargs`` and pass them on to ``launch_ros``'s
+    ``Node`` (as rosaadl's generated launch files do, to fit the prefix to the machine): a call
+    of such a function is a launch ``Node`` with the caller's keywords."""
+    wrappers = []
+    for stmt in tree.body:
+        if not isinstance(stmt, ast.FunctionDef) or stmt.args.kwarg is None:
+            continue
+        extra = stmt.args.kwarg.arg
+        for inner in ast.walk(stmt):
+            if (
+                isinstance(inner, ast.Call)
+                and dotted(inner.func, imports) in _LAUNCH_NODE
+                and any(k.arg is None and isinstance(k.value, ast.Name) and k.value.id == extra
+                        for k in inner.keywords)
+            ):  # fmt: skip
+                wrappers.append(stmt.name)
+                break
+    return wrappers
+
+
 def launch_actions(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> list[LaunchAction]:
     """The ``launch_ros.actions.Node(...)`` calls of a Python launch file."""
     imports: dict[str, str] = {}
@@ -155,13 +184,14 @@ def launch_actions(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> l
                     alias.asname and alias.name or alias.name.split(".")[0]
                 )
     scope = Scope(module_constants(tree))
+    for wrapper in _node_wrappers(tree, imports):
+        imports[wrapper] = _LAUNCH_NODE[0]
     found: list[LaunchAction] = []
     for node in ast.walk(tree):
-        if not isinstance(node, ast.Call) or dotted(node.func, imports) not in (
-            "launch_ros.actions.Node",
-            "launch_ros.actions.node.Node",
-        ):
+        if not isinstance(node, ast.Call) or dotted(node.func, imports) not in _LAUNCH_NODE:
             continue
+        if _forwards(node):
+            continue  # a wrapper's own call: its arguments are its caller's
         args = {k.arg: k.value for k in node.keywords if k.arg}
         package, executable = _text(args.get("package"), scope), _text(args.get("executable"), scope)
         if package is None or executable is None:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from rosaadl.analysis.cause_effect import ChainLink, chain_bound
+from rosaadl.analysis.cause_effect import ChainLink, chain_bound, release_gaps
 from rosaadl.analysis.executor_response import CallbackTiming, polling_response_time
 from rosaadl.analysis.executor_simulation import simulate_executor
 from rosaadl.analysis.executors import Callback
@@ -104,7 +104,8 @@ def test_teper_rtss2022_case_study_our_bound():
     assert set(responses.values()) == {180}
     callbacks = _callbacks()
     on_chain = [callbacks[name] for name in CHAIN]
-    links = [ChainLink(a, b) for a, b in zip(on_chain, on_chain[1:], strict=False)]
+    # every hop of the case study is a topic: each subscription is released by the chain's message
+    links = [ChainLink(a, b, f"{a.path}->{b.path}") for a, b in zip(on_chain, on_chain[1:], strict=False)]
     bound = chain_bound(
         "case_study",
         on_chain,
@@ -151,3 +152,32 @@ def test_blass_rtss2021_reference_example():
         releases = [a_releases, [1 if late == 1 else 0], [1 if late == 2 else 0]]
         worst = simulate_executor(STARVATION_FREE, "polling", releases).worst
         assert worst[late] == 439 <= ours[late]
+
+
+def _callback(name: str, kind: str, period: int) -> Callback:
+    timer = kind == "timer"
+    span = Fraction(period)
+    return Callback(f"n.{name}", "n", kind, span, Fraction(1), span, 0, name, 0, timer)
+
+
+def test_a_stored_link_waits_for_the_readers_next_release():
+    """Teper et al., RTSS 2022, second chain of Section VIII's case study, in its smallest shape:
+    a subscription ``b`` stores the data of the chain for ``c``, which another topic (from the
+    timer ``d``) releases. The data waits at most until ``c``'s next release: ``c``'s longest
+    gap between releases is ``d``'s period plus ``d``'s response time (the jitter ``d`` passes
+    on), so the chain costs ``(T_a + R_a) + R_b + (T_d + R_d) + R_c`` = 110 + 5 + 70 + 7 = 192.
+    Charging ``c`` its response time only (7) would claim 122, below what can happen."""
+    a, b, c, d = (_callback("a", "timer", 100), _callback("b", "subscription", 100),
+                  _callback("c", "subscription", 50), _callback("d", "timer", 50))  # fmt: skip
+    responses = {a.path: 10, b.path: 5, c.path: 7, d.path: 20}
+    every_link = [ChainLink(a, b, "a->b"), ChainLink(b, c), ChainLink(d, c, "d->c")]
+    gaps = release_gaps(every_link, lambda cb: Fraction(responses[cb.path]))
+    assert gaps(c) == 70 and gaps(b) == 110 and gaps(d) == 50
+    bound = chain_bound(
+        "stored", [a, b, c], every_link[:2], lambda cb: Fraction(responses[cb.path]), lambda _: Fraction(0),
+        gaps=gaps,
+    )  # fmt: skip
+    assert bound.reaction_time == 192 == bound.data_age
+    # a cycle of subscriptions has no longest gap, so a chain stored into it has no bound
+    looped = [ChainLink(a, b, "a->b"), ChainLink(b, c), ChainLink(c, b, "c->b"), ChainLink(b, c, "b->c")]
+    assert release_gaps(looped, lambda cb: Fraction(responses[cb.path]))(c) is None

@@ -251,3 +251,29 @@ def test_measured_sizes_become_the_data_size_of_types_without_a_fixed_one():
     assert size.ownedValues[0].value.value == 28
     project.properties[0].value = "-3"
     assert ros_msg.measured_sizes(project) == {}
+
+
+def test_a_launch_node_through_a_wrapper_that_passes_its_keywords_on():
+    """A module function taking ``**kwargs`` and handing them to ``launch_ros``'s ``Node`` (the
+    generated launch files fit the prefix to the machine that way) is a launch ``Node``; its own
+    forwarding call is not one (no warning for it)."""
+    import ast
+
+    from rosaadl.importers.ros2_package.launching import launch_actions
+
+    text = (
+        "from launch import LaunchDescription\n"
+        "from launch_ros.actions import Node as RosNode\n"
+        "def Node(**kwargs):\n"
+        "    kwargs['prefix'] = 'taskset -c 0'\n"
+        "    return RosNode(**kwargs)\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([Node(package='p', executable='e', name='renamed',\n"
+        "                                   remappings=[('a', 'b')])])\n"
+    )
+    warnings: list = []
+    actions = launch_actions(ast.parse(text), "x.launch.py", warnings)
+    assert [(a.package, a.executable, a.name, a.remappings) for a in actions] == [
+        ("p", "e", "renamed", {"a": "b"})
+    ]
+    assert warnings == []
