@@ -1,8 +1,9 @@
 """One result object for every analysis of an instance, and its renderings.
 
 :func:`run_analyses` runs the selected analyses (those of :mod:`rosaadl.analysis.registry`:
-``cpu``, ``budget``, ``bus``, ``sched``, ``sim``, ``latency``, ``executor``, ``deploy``, and any
-other registered) on an instance and gathers them in an :class:`AnalysisReport`:
+``cpu``, ``budget``, ``bus``, ``sched``, ``sim``, ``latency``, ``executor``, ``deploy``,
+``compare``, and any other registered) on an instance and gathers them in an
+:class:`AnalysisReport`:
 
 * :meth:`AnalysisReport.as_dict` / :meth:`AnalysisReport.to_json`: the JSON document of
   ``rosaadl analyze --format json``::
@@ -54,7 +55,7 @@ from rosaadl.errors import Diagnostic
 __all__ = ["ANALYSES", "DEFAULT_ANALYSES", "AnalysisReport", "run_analyses", "parse_only"]
 
 #: The analyses rosaadl ships, in report order (others may be registered).
-ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "executor", "deploy")
+ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "executor", "deploy", "compare")
 #: What runs when nothing is selected (the deployment search proposes, it does not check).
 DEFAULT_ANALYSES = ("cpu", "budget", "bus", "sched", "sim", "latency", "executor")
 
@@ -230,6 +231,7 @@ def run_analyses(
     deployment: dict[str, Any] | None = None,
     simulation_horizon: Any = None,
     latency_preferences: Any = None,
+    measurements: Any = None,
 ) -> AnalysisReport:
     """Run the selected analyses (default: every registered analysis that runs by default) on an
     instance, in report order.
@@ -239,7 +241,8 @@ def run_analyses(
     :func:`~rosaadl.analysis.deployment.search_deployment`, ``latency_chains`` the chains to
     :func:`~rosaadl.analysis.latency.analyze_latency` (and ``latency_preferences``, OSATE's
     preferences), ``simulation_horizon`` the horizon to
-    :func:`~rosaadl.analysis.simulation.simulate`.
+    :func:`~rosaadl.analysis.simulation.simulate`, ``measurements`` (a measured run,
+    :class:`~rosaadl.importers.measurements.Measurements`) the ``compare`` analysis.
     """
     from rosaadl.analysis.instance_values import instance_root
 
@@ -252,6 +255,7 @@ def run_analyses(
             "latency_preferences": latency_preferences,
             "deployment": deployment,
             "simulation_horizon": simulation_horizon,
+            "measurements": measurements,
         },
     )
     outcomes = []

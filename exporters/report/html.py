@@ -30,6 +30,7 @@ from markupsafe import Markup, escape
 
 from rosaadl.errors import ExportError
 from rosaadl.exporters.report import svg as charts
+from rosaadl.exporters.report.compare_chart import compare_chart
 from rosaadl.exporters.report.executor_charts import chain_chart, executor_gantt, executor_section
 from rosaadl.exporters.report.latency_chart import latency_chart
 from rosaadl.exporters.report.view import build_view, short_path
@@ -470,6 +471,9 @@ def render_report(
         "bus": charts.bus_chart(view["bus"]),
         "gantt": charts.gantt_chart(view["schedule"]),
         "latency": latency_chart((view["analyses"].get("latency") or {}).get("chains") or []),
+        "compare": compare_chart(
+            (view["analyses"].get("compare") or {}).get("items") or [], view["instance"]
+        ),
     }
     executors = executor_section(report)
     svgs["chains"] = chain_chart(executors)

@@ -13,6 +13,7 @@ from rosaadl.cli.common import (
     EXIT_ERRORS,
     EXIT_OK,
     Options,
+    Report,
     inputs_argument,
     lenient_option,
     output_option,
@@ -60,6 +61,12 @@ class _AnalysesOption(click.Option):
     metavar="XX-MF|PE-ET|DL-EQ|FQ",
     help="OSATE's latency preferences (the system kind pair is ignored: both are reported).",
 )
+@click.option(
+    "--compare",
+    "measurements_file",
+    type=click.Path(path_type=Path),
+    help="A measured run (measurements.json): every prediction beside its measurement, error in %.",
+)
 @pass_options
 def command(
     options: Options,
@@ -71,6 +78,7 @@ def command(
     lenient: bool,
     html_dir: Path | None,
     latency_code: str,
+    measurements_file: Path | None,
 ) -> None:
     """Analyse a deployment; exit 1 when an analysis finds an overload or a missed deadline.
     Inputs may be AADL text, a rosaadl model, an OSATE .aaxl2 or a Cheddar file."""
@@ -79,10 +87,22 @@ def command(
 
     selected = parse_only(only)  # a bad --only is a usage error before any reading
     preferences = latency_preferences(latency_code)
+    measurements = None
+    if measurements_file is not None:
+        from rosaadl.errors import ParseError
+        from rosaadl.importers.measurements import read_measurements
+
+        try:
+            measurements = read_measurements(measurements_file)
+        except ParseError as exc:  # every problem of the file, located, and nothing written
+            refused = Report()
+            refused.note(exc.errors or [exc])
+            sys.exit(refused.emit(options))
+        selected = parse_only([*selected, "compare"])
     loaded = read_aadl_inputs(list(inputs), time_unit=time_unit, lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient)
     options.progress(f"analysing {instance.name}: {', '.join(selected)}")
-    report = run_analyses(instance, selected, latency_preferences=preferences)
+    report = run_analyses(instance, selected, latency_preferences=preferences, measurements=measurements)
     written = report.write_csv(out) if out is not None else []
     pages = []
     if html_dir is not None:

@@ -8,9 +8,10 @@
   ``Pkg::T.impl`` or an unqualified name searched in every package): category, extends chain,
   implementations, features, subcomponents, connections, flows and properties with units. An
   unknown or ambiguous name exits 1 and lists the candidates.
-* ``add-profile MEASUREMENTS.csv [INPUT...] -o DIR``: measurements of nodes on boards and cores
-  turned into PDM packages ``<node package>_profiles`` in ``DIR`` (see ``docs/library.md``).
-  Every bad row is reported with its line and column; nothing is written then.
+* ``add-profile MEASUREMENTS.csv|measurements.json [INPUT...] -o DIR``: measurements of nodes on
+  boards and cores (or a measured run) turned into PDM packages ``<node package>_profiles`` in
+  ``DIR`` (see ``docs/library.md``). Every bad row is reported with its line and column; nothing is
+  written then.
 """
 
 from __future__ import annotations
@@ -209,9 +210,10 @@ def _unit_lines(info: dict[str, Any]) -> list[str]:
 @output_option("Folder to write the profile packages into (<node package>_profiles.aadl).")
 @pass_options
 def add_profile_command(options: Options, measurements: Path, inputs: tuple[Path, ...], out: Path) -> None:
-    """Turn a CSV of measurements into PDM implementations of library nodes (INPUTs: AADL files or
-    folders with nodes that are not in the library). Columns: node, thread, board, core, period_us,
-    cet_us, mips_raw, ipc, data_size_bytes [, processor]."""
+    """Turn a CSV of measurements, or a measured run's measurements.json, into PDM implementations
+    of library nodes (INPUTs: AADL files or folders with nodes that are not in the library). CSV
+    columns: node, thread, board, core, period_us, cet_us, mips_raw, ipc, data_size_bytes
+    [, processor]."""
     from rosaadl.workflow.library_add_profile import add_profiles
 
     report = Report()

@@ -34,6 +34,19 @@ def _rate(value: float | None) -> str:
     return "-" if value is None else f"{value:g} Hz"
 
 
+def _chains(instance, plan) -> list:
+    """The model's end-to-end flows (the latency analysis's asynchronous chains) as topic chains
+    between the plan's nodes."""
+    from rosaadl.analysis import run_analyses
+    from rosaadl.workflow.run.measure import chain_plans
+
+    latency = run_analyses(instance, "latency").result("latency")
+    flows = (
+        [] if latency is None else [(c.name, list(c.threads)) for c in latency.chains if c.mode == "async"]
+    )
+    return chain_plans(plan.nodes, plan.topics, flows)
+
+
 @click.command("run")
 @inputs_argument
 @root_option("The system implementation to run (or the instance to take).")
@@ -55,6 +68,11 @@ def _rate(value: float | None) -> str:
     type=click.Path(path_type=Path),
     help=f"The run folder (src, build, install, logs) [default: {DEFAULT_RUN_DIR}].",
 )
+@click.option(
+    "--measure",
+    is_flag=True,
+    help="Trace every dispatch and message and write RUN_DIR/measurements.json (see docs/measurements.md).",
+)
 @click.option("--no-realtime", is_flag=True, help="Do not apply the model's real-time priorities (chrt).")
 @click.option("--no-build", is_flag=True, help="Run the run folder's install as it is (no colcon build).")
 @click.option("--app-name", help="Name of the application's packages (default: the root type's name).")
@@ -67,6 +85,7 @@ def command(
     root: str | None,
     duration: float,
     emulate: bool,
+    measure: bool,
     out: Path | None,
     no_realtime: bool,
     no_build: bool,
@@ -78,6 +97,8 @@ def command(
     from rosaadl.workflow.run import PLAN_FILE, RunError, RunOptions, load_plan, prepare_run, run_application
 
     report = Report()
+    chains: list = []
+    model_root = None
     if len(inputs) == 1 and inputs[0].is_dir() and (inputs[0] / PLAN_FILE).is_file():
         folder = inputs[0]
         if out is not None and out.resolve() != folder.resolve():
@@ -99,6 +120,9 @@ def command(
             instance, folder, rosmod_trace=rosmod_trace, options=GenerationOptions(app_name=app_name)
         )
         report.note([*loaded.warnings, *generated.diagnostics])
+        if measure:
+            chains = _chains(instance, plan)
+            model_root = plan.model
         options.progress(
             f"generated {len(generated.written)} file(s) into {folder / 'src'} "
             f"({len(plan.nodes)} node(s), {len(plan.topics)} topic(s))"
@@ -107,7 +131,15 @@ def command(
         result = run_application(
             folder,
             plan,
-            RunOptions(duration=duration, emulate=emulate, realtime=not no_realtime, build=not no_build),
+            RunOptions(
+                duration=duration,
+                emulate=emulate,
+                realtime=not no_realtime,
+                build=not no_build,
+                measure=measure,
+                chains=tuple(chains),
+                root=model_root,
+            ),
             progress=options.progress,
         )
     except RunError as exc:  # no runtime, a failed build, no monitor: the report says so

@@ -89,10 +89,10 @@ class Measurement:
     thread: str
     board: str
     core: str
-    period_ns: int
+    period_ns: int | None  #: None: the thread keeps the PIM's Period (a measured run)
     cet_ns: int
-    mips_raw: Decimal
-    ipc: Decimal
+    mips_raw: Decimal | None  #: None: not measured (a run without hardware counters)
+    ipc: Decimal | None
     data_size: int | None
     processor: str | None
     columns: tuple[tuple[str, int], ...] = ()
@@ -103,8 +103,11 @@ class Measurement:
         return f"{self.board}_{self.core}"
 
     @property
-    def mips_budget(self) -> Decimal:
-        """``mips_raw / ipc`` rounded half up to 2 decimals, as the paper's Table 2 gives it."""
+    def mips_budget(self) -> Decimal | None:
+        """``mips_raw / ipc`` rounded half up to 2 decimals, as the paper's Table 2 gives it
+        (None when either was not measured)."""
+        if self.mips_raw is None or self.ipc is None:
+            return None
         return (self.mips_raw / self.ipc).quantize(_CENT, rounding=ROUND_HALF_UP)
 
     def where(self, column: str | None = None) -> Location:

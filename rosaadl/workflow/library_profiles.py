@@ -71,7 +71,7 @@ class ProfiledImplementation:
     process: str  # the new process implementation, qualified
     threads: list[str]  # the new thread implementations, qualified
     rows: list[int]
-    mips_budget: float
+    mips_budget: float | None  #: None: no instruction rate was measured (no MIPS properties)
     reference_processor: str | None
 
     def as_dict(self) -> dict[str, Any]:
@@ -346,14 +346,16 @@ class ProfileBuilder:
         if len(self.errors) > before or node_alias is None:
             return None
         budget = first.mips_budget
-        properties = [
-            _association("SEI::MIPSBudget", _real(budget, "MIPS")),
-            _association("ROS_Profiling::Raw_MIPS", _real(first.mips_raw, "MIPS")),
-            _association("ROS_Profiling::IPC", _real(first.ipc, None)),
-        ]
-        for name in ("SEI", "ROS_Profiling"):
-            if name not in withs:
-                withs.append(name)
+        properties = []
+        if budget is not None:  # a run without hardware counters measures no instruction rate
+            properties = [
+                _association("SEI::MIPSBudget", _real(budget, "MIPS")),
+                _association("ROS_Profiling::Raw_MIPS", _real(first.mips_raw, "MIPS")),
+                _association("ROS_Profiling::IPC", _real(first.ipc, None)),
+            ]
+            for name in ("SEI", "ROS_Profiling"):
+                if name not in withs:
+                    withs.append(name)
         reference_name = None
         if reference is not None:
             reference_name = resolver.qualified_name(reference)
@@ -378,7 +380,7 @@ class ProfileBuilder:
             process=f"{package}::{process.name}",
             threads=[f"{package}::{impl.name}" for impl, _ in threads.values()],
             rows=[r.m.row for r in rows],
-            mips_budget=float(budget),
+            mips_budget=None if budget is None else float(budget),
             reference_processor=reference_name,
         )
         return [process, *(impl for impl, _ in threads.values())], summary
@@ -389,7 +391,7 @@ class ProfileBuilder:
         instance = row.node.instances.get((row.sub.name or "").lower())
         properties = [_association("Compute_Execution_Time", _time_range(m.cet_ns))]
         pim_period = ns_of(instance_value(instance, "Period"))
-        if pim_period != m.period_ns:
+        if m.period_ns is not None and pim_period != m.period_ns:
             properties.append(_association("Period", _time(m.period_ns)))
             if pim_period is not None:
                 self.warnings.append(

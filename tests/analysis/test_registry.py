@@ -76,6 +76,7 @@ def test_the_built_in_analyses_are_registered_in_report_order() -> None:
         "latency",
         "executor",
         "deployment",
+        "compare",
     }
 
 

@@ -32,6 +32,7 @@ from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generate_workspace
 from rosaadl.workflow.run.cores import machine, node_prefix, shared_cpus
 from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
+from rosaadl.workflow.run.measured_window import MeasuredWindow
 from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
 from rosaadl.workflow.run.plan import RunError, RunPlan, TopicPlan, run_plan, save_plan
 from rosaadl.workflow.run.processes import GRACE_SECONDS, NodeProcess, node_command, start_node, stop_nodes
@@ -66,6 +67,9 @@ class RunOptions:
     build: bool = True
     startup: float = 60.0  # seconds the nodes have to come up in the ROS graph (before ``duration``)
     grace: float = GRACE_SECONDS
+    measure: bool = False  # trace the nodes and write measurements.json (see .measure)
+    chains: tuple = ()  # the model's flows as ChainPlan, measured with ``measure``
+    root: str | None = None  # the model's root, written into measurements.json
 
 
 @dataclass
@@ -99,6 +103,7 @@ class RunResult:
     topics: list[TopicResult] = field(default_factory=list)
     errors: list[Diagnostic] = field(default_factory=list)
     warnings: list[Diagnostic] = field(default_factory=list)
+    measurements: Path | None = None
 
     @property
     def ok(self) -> bool:
@@ -109,6 +114,7 @@ class RunResult:
         return {
             "run_folder": str(self.folder),
             "duration_s": self.duration,
+            **({"measurements": str(self.measurements)} if self.measurements else {}),
             "nodes": [
                 {
                     "name": n.name,
@@ -190,6 +196,9 @@ def run_application(
     try:
         monitor = start_monitor(plan.topics, [n.full_name for n in plan.nodes], counts_file, env, folder)
         extra = [(EMULATE_PARAMETER, True)] if options.emulate else []
+        window = MeasuredWindow(folder, processes) if options.measure else None
+        if window is not None:
+            extra += window.parameters()
         shared = shared_cpus(plan.nodes, here)
         for node in plan.nodes:
             prefix, warnings = node_prefix(node, here, shared)
@@ -197,7 +206,9 @@ def run_application(
             command = node_command(node, install, prefix, extra)
             processes.append(start_node(node, command, env, logs, folder))
             progress(f"started {node.full_name}" + (f" ({' '.join(prefix)})" if prefix else ""))
-        _run_for(processes, counts_file, options, progress)
+        _run_for(processes, counts_file, options, progress, None if window is None else window.begin)
+        if window is not None:
+            window.end()
         stop_monitor(monitor)
         progress(f"stopping {len(processes)} node(s)")
         stop_nodes(processes, grace=options.grace)
@@ -210,6 +221,9 @@ def run_application(
         process.started = process.node.full_name in counts.get("nodes", {})
     _node_results(result, processes, options)
     _topic_results(result, plan.topics, counts.get("topics", {}), options)
+    if window is not None:
+        result.measurements = window.write(plan, result, options)
+        progress(f"wrote {result.measurements}")
     return result
 
 
@@ -229,7 +243,11 @@ def _counts(result: RunResult, counts_file: Path) -> dict:
 
 
 def _run_for(
-    processes: list[NodeProcess], counts_file: Path, options: RunOptions, progress: Callable[[str], None]
+    processes: list[NodeProcess],
+    counts_file: Path,
+    options: RunOptions,
+    progress: Callable[[str], None],
+    on_start: Callable[[], None] | None = None,
 ) -> None:
     """Wait until every node is up in the ROS graph (at most ``options.startup`` seconds, less
     when a node ends), then let them run ``options.duration`` seconds."""
@@ -247,6 +265,8 @@ def _run_for(
         + (f" (not: {', '.join(missing)})" if missing else "")
     )
     progress(f"running {options.duration:g} s" + (" with the workload twin" if options.emulate else ""))
+    if on_start is not None:
+        on_start()
     end = time.monotonic() + options.duration
     while time.monotonic() < end:
         time.sleep(0.05)

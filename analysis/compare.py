@@ -1,0 +1,399 @@
+"""Predicted vs measured: the analyses' figures beside what a run of the generated application
+measured (``measurements.json``, :mod:`rosaadl.importers.measurements`), with the error in %.
+
+:func:`compare_measurements` reads the results of the other analyses of the same run (``cpu``,
+``bus``, ``sched``, ``latency``; run here when they were not selected) and lists one
+:class:`ComparedItem` per prediction that has a measurement:
+
+* per thread: ``execution_time_us`` (its ``Compute_Execution_Time`` upper bound vs the mean CPU
+  time of its dispatches: the workload twin's fidelity) and ``cpu_load_percent`` (CET / Period
+  vs mean CPU time / mean period);
+* per process: ``cpu_load_percent`` (the sum of its threads' loads vs its whole CPU time from
+  ``/proc``), ``callback_cpu_load_percent`` (the same prediction vs its measured threads' own
+  CPU time) and ``middleware_cpu_load_percent`` (what the model does not hold: the process's
+  CPU time beyond its callbacks, spent in the executor, serialization and DDS; no prediction);
+* per processor or core: ``cpu_load_percent`` (its threads' utilisation vs the measured load of
+  what is bound to it);
+* per out port with a measured topic: ``bandwidth_kbps`` (``Data_Size`` × rate, KB/s);
+* per thread with a response time bound (the schedulability analysis's worst case):
+  ``response_time_us``, bound = the worst case, measured = the maximum;
+* per end-to-end flow: ``latency_us`` (bound = the worst case, measured = the maximum) and
+  ``latency_min_us`` (bound = the best case, measured = the minimum).
+
+A plain estimate (CPU load, bandwidth, execution time) reports its error
+``(measured - predicted) / predicted × 100``. A bound the measurement passes (a response time or
+latency above the worst case, a latency below the best case) is ``violated`` and an error
+finding of the report (exit 1). A measured thread, process, topic or chain the model does not
+hold is a warning. Registered as the ``compare`` analysis, run by ``rosaadl analyze --compare``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+from rosaadl.analysis.instance_values import category_of
+from rosaadl.analysis.registry import Analysis, AnalysisContext, register
+from rosaadl.analysis.rendering import csv_text, fmt, table
+from rosaadl.errors import AnalysisError, Diagnostic, Location, RosaadlError
+from rosaadl.model import find_instance, instance_path
+from rosaadl.units import standard_units
+
+__all__ = ["ComparedItem", "ComparisonResult", "compare_measurements", "compare_text", "compare_csv"]
+
+_HEADERS = ("path", "quantity", "predicted", "measured", "error_percent", "bound", "violated")
+
+
+@dataclass(frozen=True)
+class ComparedItem:
+    """One prediction beside its measurement. ``bound``: the value the analysis claims the
+    measurement never passes (None for an estimate); ``violated``: the measurement passed it."""
+
+    path: str
+    quantity: str
+    predicted: float | None
+    measured: float
+    bound: float | None = None
+    violated: bool = False
+
+    @property
+    def error_percent(self) -> float | None:
+        """(measured − predicted) / predicted in % (None without a non-zero prediction)."""
+        if not self.predicted:
+            return None
+        return (self.measured - self.predicted) / self.predicted * 100
+
+    def as_dict(self) -> dict[str, Any]:
+        error = self.error_percent
+        return {
+            "path": self.path,
+            "quantity": self.quantity,
+            "predicted": _rounded(self.predicted),
+            "measured": _rounded(self.measured),
+            "error_percent": _rounded(error),
+            "bound": _rounded(self.bound),
+            "violated": self.violated,
+        }
+
+    def cells(self) -> list[Any]:
+        return [
+            self.path,
+            self.quantity,
+            self.predicted,
+            self.measured,
+            self.error_percent,
+            self.bound,
+            self.violated,
+        ]
+
+
+def _rounded(value: float | None) -> float | None:
+    return None if value is None else round(float(value), 6)
+
+
+@dataclass(frozen=True)
+class ComparisonResult:
+    """Every compared item, in a stable order, and what could not be matched."""
+
+    items: tuple[ComparedItem, ...]
+    diagnostics: tuple[Diagnostic, ...]
+    source: str | None = None
+    instance: str = ""  #: the root instance's name (left out of the text's paths)
+
+    @property
+    def ok(self) -> bool:
+        return all(d.severity != "error" for d in self.diagnostics)
+
+    @property
+    def violations(self) -> tuple[ComparedItem, ...]:
+        return tuple(i for i in self.items if i.violated)
+
+    def item(self, path: str, quantity: str) -> ComparedItem:
+        for found in self.items:
+            if found.quantity == quantity and path in (found.path, _below_root(found.path, self.instance)):
+                return found
+        raise KeyError((path, quantity))
+
+    def as_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"items": [i.as_dict() for i in self.items]}
+        if self.source:
+            out["measurements"] = self.source
+        return out
+
+
+# =============================================================================== matching
+
+
+def _below_root(path: str, root_name: str) -> str:
+    """An instance path without the root's name (``tracking_impl_Instance.a.b`` → ``a.b``; a
+    root instance named as OSATE names them, ``<impl>_Instance``, also when it is another root's:
+    a run of one system measures the same processes as a system that extends it)."""
+    head, dot, rest = path.partition(".")
+    own = head.lower() == root_name.lower() or head.endswith("_Instance")
+    return rest if dot and own else path
+
+
+def _process_of(root: Any, thread_path: str) -> str | None:
+    try:
+        found = find_instance(root, thread_path)
+    except RosaadlError:
+        return None
+    current = found.eContainer()
+    while current is not None and hasattr(current, "category"):
+        if category_of(current) == "process":
+            return instance_path(current)
+        current = current.eContainer()
+    return None
+
+
+class _Comparison:
+    """One comparison: the measurements by path, the items found, the diagnostics."""
+
+    def __init__(self, context: AnalysisContext, measurements: Any) -> None:
+        self.context = context
+        self.root = context.root
+        self.name = self.root.name or ""
+        self.items: list[ComparedItem] = []
+        self.diagnostics: list[Diagnostic] = []
+        self.threads = {_below_root(t.path, self.name): t for t in measurements.threads}
+        self.processes = {_below_root(p.path, self.name): p for p in measurements.processes}
+        self.topics = {_below_root(t.port, self.name): t for t in measurements.topics if t.port}
+        self.chains = {_below_root(c.name, self.name): c for c in measurements.chains}
+        self.used: set[tuple[str, str]] = set()
+
+    def thread(self, path: str) -> Any:
+        key = _below_root(path, self.name)
+        found = self.threads.get(key)
+        if found is not None:
+            self.used.add(("thread", key))
+        return found
+
+    def add(self, path: str, quantity: str, predicted: Any, measured: Any, bound: Any = None, *, below=False):
+        if measured is None:
+            return
+        predicted = None if predicted is None else float(predicted)
+        bound = None if bound is None else float(bound)
+        violated = bound is not None and (measured < bound if below else measured > bound)
+        self.items.append(ComparedItem(path, quantity, predicted, float(measured), bound, violated))
+        if violated:
+            side = "below its best case" if below else "above its bound"
+            self.diagnostics.append(
+                Diagnostic(
+                    "error",
+                    f"measured {quantity} {fmt(measured)} is {side} {fmt(bound)} predicted by the analyses",
+                    Location(path=path),
+                )
+            )
+
+    # ---------------------------------------------------------------- CPU
+
+    def cpu(self) -> None:
+        result = self.context.result("cpu")
+        if result is None:
+            return
+        per_process: dict[str, Fraction] = {}
+        thread_process: dict[str, str | None] = {}
+        seen_threads: set[str] = set()
+        for processor in result.processors:
+            if processor.mode and processor is not _first_mode(result, processor):
+                continue
+            for row in processor.threads:
+                if row.path in seen_threads:
+                    continue
+                seen_threads.add(row.path)
+                process = thread_process.setdefault(row.path, _process_of(self.root, row.path))
+                if process is not None and row.load_percent is not None:
+                    per_process[process] = per_process.get(process, Fraction(0)) + row.load_percent
+                measured = self.thread(row.path)
+                if measured is None:
+                    continue
+                if measured.execution_time_us is not None:
+                    self.add(row.path, "execution_time_us", row.cet_us, measured.execution_time_us.mean)
+                self.add(row.path, "cpu_load_percent", row.load_percent, measured.load_percent)
+        measured_process_load = self.process_loads(per_process, thread_process)
+        for processor in result.processors:
+            if processor.cores or (processor.mode and processor is not _first_mode(result, processor)):
+                continue
+            self.core(processor, thread_process, measured_process_load)
+
+    def process_loads(
+        self, predicted: dict[str, Fraction], thread_process: dict[str, str | None]
+    ) -> dict[str, float]:
+        """Per process: total, callbacks, middleware; the measured totals by process path."""
+        totals: dict[str, float] = {}
+        for path in sorted(predicted):
+            measured = self.processes.get(_below_root(path, self.name))
+            if measured is None:
+                continue
+            self.used.add(("process", _below_root(path, self.name)))
+            own = [
+                t.load_percent
+                for thread_path, process in thread_process.items()
+                if process == path
+                for t in [self.threads.get(_below_root(thread_path, self.name))]
+                if t is not None and t.load_percent is not None
+            ]
+            totals[path] = measured.cpu_load_percent
+            self.add(path, "cpu_load_percent", predicted[path], measured.cpu_load_percent)
+            if own:
+                callbacks = sum(own)
+                self.add(path, "callback_cpu_load_percent", predicted[path], callbacks)
+                self.add(
+                    path, "middleware_cpu_load_percent", None, max(0.0, measured.cpu_load_percent - callbacks)
+                )
+        return totals
+
+    def core(self, processor: Any, thread_process: dict[str, str | None], totals: dict[str, float]) -> None:
+        """A core's measured load: the processes whose threads are all on it, whole; the
+        threads of a process split over several cores, their own CPU time."""
+        here = {row.path for row in processor.threads}
+        if not here:
+            return
+        measured = 0.0
+        found = False
+        processes = {thread_process.get(p) for p in here}
+        for process in processes:
+            everywhere = {t for t, p in thread_process.items() if p == process}
+            if process in totals and everywhere <= here:
+                measured += totals[process]
+                found = True
+                continue
+            for path in here & everywhere if process is not None else here:
+                thread = self.threads.get(_below_root(path, self.name))
+                if thread is not None and thread.load_percent is not None:
+                    measured += thread.load_percent
+                    found = True
+        if found:
+            self.add(processor.path, "cpu_load_percent", processor.utilization * 100, measured)
+
+    # ---------------------------------------------------------------- bus, response times, latency
+
+    def bandwidth(self) -> None:
+        result = self.context.result("bus")
+        if result is None:
+            return
+        for port in result.ports:
+            topic = self.topics.get(_below_root(port.path, self.name))
+            if topic is None:
+                continue
+            self.used.add(("topic", _below_root(port.path, self.name)))
+            self.add(port.path, "bandwidth_kbps", port.kbytesps, topic.bandwidth_bytes_per_s / 1000)
+
+    def response_times(self) -> None:
+        result = self.context.result("sched")
+        if result is None:
+            return
+        to_us = standard_units().factor(result.time_unit, "us")
+        for domain in result.domains:
+            for task in domain.tasks:
+                measured = self.thread(task.path)
+                if measured is None or measured.response_time_us is None:
+                    continue
+                bound = None if task.wcrt is None or not task.wcrt_exact else task.wcrt * to_us
+                self.add(task.path, "response_time_us", bound, measured.response_time_us.max, bound)
+
+    def latency(self) -> None:
+        result = self.context.result("latency")
+        if result is None:
+            return
+        for chain in result.chains:
+            measured = self.chains.get(_below_root(chain.name, self.name))
+            if measured is None or measured.latency_us is None:
+                continue
+            self.used.add(("chain", _below_root(chain.name, self.name)))
+            if chain.mode == "async":
+                # a ROS application is asynchronous: the bounds of OSATE's asynchronous flow
+                # latency are the claim held to the measurement
+                self.add(chain.name, "latency_us", chain.worst_us, measured.latency_us.max, chain.worst_us)
+                self.add(
+                    chain.name,
+                    "latency_min_us",
+                    chain.best_us,
+                    measured.latency_us.min,
+                    chain.best_us,
+                    below=True,
+                )
+            else:
+                self.add(chain.name, f"latency_{chain.mode}_us", chain.worst_us, measured.latency_us.max)
+
+    def unmatched(self) -> None:
+        for kind, table_ in (
+            ("thread", self.threads),
+            ("process", self.processes),
+            ("topic", self.topics),
+            ("chain", self.chains),
+        ):
+            for key in sorted(table_):
+                if (kind, key) not in self.used:
+                    self.diagnostics.append(
+                        Diagnostic(
+                            "warning",
+                            f"measured {kind} {key} matches no prediction of the model",
+                            Location(path=key),
+                        )
+                    )
+
+
+def _first_mode(result: Any, processor: Any) -> Any:
+    """The row of ``processor``'s path in the first system mode (a run has one mode)."""
+    return next(p for p in result.processors if p.path == processor.path)
+
+
+def compare_measurements(context: AnalysisContext, measurements: Any) -> ComparisonResult:
+    """Every prediction of the analyses of ``context`` beside its measurement in
+    ``measurements`` (a :class:`~rosaadl.importers.measurements.Measurements`)."""
+    comparison = _Comparison(context, measurements)
+    comparison.cpu()
+    comparison.bandwidth()
+    comparison.response_times()
+    comparison.latency()
+    comparison.unmatched()
+    return ComparisonResult(
+        tuple(comparison.items), tuple(comparison.diagnostics), measurements.source, comparison.name
+    )
+
+
+def _run(context: AnalysisContext) -> ComparisonResult:
+    measurements = context.options.get("measurements")
+    if measurements is None:
+        raise AnalysisError(
+            "the compare analysis needs measurements (rosaadl analyze --compare measurements.json)"
+        )
+    return compare_measurements(context, measurements)
+
+
+# =============================================================================== renderings
+
+
+def compare_text(result: ComparisonResult) -> list[str]:
+    """The comparison as a text table (error in %; a violated bound marked)."""
+    lines = ["Predicted vs measured" + (f" ({result.source})" if result.source else "")]
+    rows = [[_below_root(i.path, result.instance), *i.cells()[1:]] for i in result.items]
+    lines += table(("path", "quantity", "predicted", "measured", "error %", "bound", "violated"), rows)
+    middleware = [i for i in result.items if i.quantity == "middleware_cpu_load_percent"]
+    if middleware:
+        lines.append(
+            "middleware (executor, serialization, DDS): the CPU load of a process beyond its callbacks"
+        )
+    lines.append("")
+    return lines
+
+
+def compare_csv(result: ComparisonResult, base: str) -> dict[str, str]:
+    """``<instance>__Compare.csv``: one row per compared item."""
+    return {f"{base}__Compare.csv": csv_text([_HEADERS, *(i.cells() for i in result.items)])}
+
+
+register(
+    Analysis(
+        name="compare",
+        json_key="compare",
+        order=90,
+        run=_run,
+        text=compare_text,
+        csv=compare_csv,
+        default=False,
+        description="the analyses' predictions beside a measured run (measurements.json), error in %",
+    )
+)

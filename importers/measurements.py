@@ -1,0 +1,280 @@
+"""``measurements.json``: what a measured run of the generated ROS 2 application saw, read and
+checked against its versioned schema (``measurements.schema.json`` beside this module,
+documented in ``docs/measurements.md``).
+
+:func:`read_measurements` reads a file, :func:`parse_measurements` a text; both return a
+:class:`Measurements` (per thread, process, topic and topic chain of the model) or raise a
+:class:`~rosaadl.errors.ParseError` located at the file, line and JSON path of the first
+problem, listing every problem in ``errors``: a truncated text, a value of the wrong type, an
+unknown member (a hand edit), a statistic whose min, mean and max are out of order, a format
+version this release does not know. Times are in microseconds, loads in % of one core.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from rosaadl.errors import Location, ParseError, RosaadlError
+from rosaadl.importers.json_limits import json_value_bound
+from rosaadl.importers.json_schema import schema_problems, value_lines
+
+__all__ = [
+    "FORMAT",
+    "VERSION",
+    "MAX_FILE_BYTES",
+    "Statistics",
+    "ThreadMeasurement",
+    "ProcessMeasurement",
+    "TopicMeasurement",
+    "ChainMeasurement",
+    "Measurements",
+    "measurements_schema",
+    "parse_measurements",
+    "read_measurements",
+]
+
+FORMAT = "rosaadl-measurements"
+VERSION = 1
+#: a measurements file larger than this is refused before it is read
+MAX_FILE_BYTES = 64 * 1024 * 1024
+_MAX_VALUES = 2_000_000
+
+
+@lru_cache(maxsize=1)
+def _schema_text() -> str:
+    return resources.files("rosaadl.importers").joinpath("measurements.schema.json").read_text("utf-8")
+
+
+def measurements_schema() -> dict[str, Any]:
+    """The JSON Schema of ``measurements.json`` (a fresh copy)."""
+    return json.loads(_schema_text())
+
+
+@dataclass(frozen=True)
+class Statistics:
+    """min, mean and max of some samples."""
+
+    min: float
+    mean: float
+    max: float
+
+    @classmethod
+    def of(cls, data: dict[str, Any] | None) -> Statistics | None:
+        return None if data is None else cls(float(data["min"]), float(data["mean"]), float(data["max"]))
+
+    def as_dict(self) -> dict[str, float]:
+        return {"min": self.min, "mean": self.mean, "max": self.max}
+
+
+@dataclass(frozen=True)
+class ThreadMeasurement:
+    """One thread's dispatches: release period (mean, jitter), execution time (CPU time of its
+    own thread), response time (release to end), deadline misses; times in µs."""
+
+    path: str
+    process: str | None
+    dispatches: int
+    period_mean_us: float | None
+    period_jitter_us: float | None
+    execution_time_us: Statistics | None
+    response_time_us: Statistics | None
+    deadline_us: float | None
+    deadline_misses: int
+
+    @property
+    def load_percent(self) -> float | None:
+        """Mean execution time / mean period in % (None below two dispatches)."""
+        if self.execution_time_us is None or not self.period_mean_us:
+            return None
+        return self.execution_time_us.mean / self.period_mean_us * 100
+
+
+@dataclass(frozen=True)
+class ProcessMeasurement:
+    """One process (ROS node): its CPU load from ``/proc`` (all its threads: callbacks,
+    executor, serialization, DDS) and the host core it ran on (None: not bound)."""
+
+    path: str
+    node: str | None
+    cpu_load_percent: float
+    core: int | None
+    classifier: str | None = None  #: the model's classifier of the process (``Pkg::type.impl``)
+
+
+@dataclass(frozen=True)
+class TopicMeasurement:
+    """One topic: messages seen, their rate and bandwidth; ``port``: the model's out port."""
+
+    name: str
+    type: str | None
+    port: str | None
+    messages: int
+    rate_hz: float
+    bytes_per_message: int | None
+    bandwidth_bytes_per_s: float
+
+
+@dataclass(frozen=True)
+class ChainMeasurement:
+    """One topic chain of the model (a flow by its name): end-to-end latency in µs."""
+
+    name: str
+    topics: tuple[str, ...]
+    samples: int
+    latency_us: Statistics | None
+
+
+@dataclass(frozen=True)
+class Measurements:
+    """A whole ``measurements.json``."""
+
+    threads: tuple[ThreadMeasurement, ...]
+    processes: tuple[ProcessMeasurement, ...]
+    topics: tuple[TopicMeasurement, ...]
+    chains: tuple[ChainMeasurement, ...]
+    root: str | None = None
+    run: tuple[tuple[str, Any], ...] = ()
+    source: str | None = None
+
+    def run_value(self, name: str, default: Any = None) -> Any:
+        return dict(self.run).get(name, default)
+
+
+def _order_problems(document: dict[str, Any]) -> list[tuple[str, str]]:
+    """min ≤ mean ≤ max in every statistic (a schema cannot say it)."""
+    problems = []
+    for group, key in (
+        ("threads", "execution_time_us"),
+        ("threads", "response_time_us"),
+        ("chains", "latency_us"),
+    ):
+        for index, row in enumerate(document.get(group, [])):
+            stats = row.get(key)
+            if stats and not stats["min"] <= stats["mean"] <= stats["max"]:
+                problems.append((f"$.{group}[{index}].{key}", "min <= mean <= max does not hold"))
+    return problems
+
+
+def _build(document: dict[str, Any], source: str | None) -> Measurements:
+    threads = tuple(
+        ThreadMeasurement(
+            path=t["path"],
+            process=t.get("process"),
+            dispatches=int(t["dispatches"]),
+            period_mean_us=None if t["period_us"] is None else float(t["period_us"]["mean"]),
+            period_jitter_us=None if t["period_us"] is None else float(t["period_us"]["jitter"]),
+            execution_time_us=Statistics.of(t["execution_time_us"]),
+            response_time_us=Statistics.of(t["response_time_us"]),
+            deadline_us=t.get("deadline_us"),
+            deadline_misses=int(t["deadline_misses"]),
+        )
+        for t in document["threads"]
+    )
+    processes = tuple(
+        ProcessMeasurement(
+            p["path"], p.get("node"), float(p["cpu_load_percent"]), p.get("core"), p.get("classifier")
+        )
+        for p in document["processes"]
+    )
+    topics = tuple(
+        TopicMeasurement(
+            t["name"],
+            t.get("type"),
+            t.get("port"),
+            int(t["messages"]),
+            float(t["rate_hz"]),
+            t.get("bytes_per_message"),
+            float(t["bandwidth_bytes_per_s"]),
+        )
+        for t in document["topics"]
+    )
+    chains = tuple(
+        ChainMeasurement(
+            c["name"], tuple(c.get("topics", ())), int(c["samples"]), Statistics.of(c["latency_us"])
+        )
+        for c in document["chains"]
+    )
+    return Measurements(
+        threads,
+        processes,
+        topics,
+        chains,
+        root=document.get("model", {}).get("root"),
+        run=tuple(sorted(document.get("run", {}).items())),
+        source=source,
+    )
+
+
+def parse_measurements(text: str, file: str | None = None) -> Measurements:
+    """The measurements in ``text``; a located :class:`ParseError` (file, line, JSON path) when
+    it is not a valid ``measurements.json`` of this version."""
+    if json_value_bound(text.encode("utf-8", "surrogatepass"), _MAX_VALUES) > _MAX_VALUES:
+        raise ParseError(f"a measurements file holds at most {_MAX_VALUES} JSON values", file=file)
+    try:
+        document = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ParseError(
+            f"malformed JSON (truncated or edited?): {exc.msg}", file=file, line=exc.lineno, column=exc.colno
+        ) from None
+    except (ValueError, RecursionError) as exc:
+        raise ParseError(f"malformed JSON: {exc}", file=file) from None
+    if isinstance(document, dict) and document.get("format") == FORMAT and document.get("version") != VERSION:
+        raise ParseError(
+            f"measurements format version {document.get('version')!r} is not known"
+            f" (this release reads {VERSION})",
+            file=file,
+            path="$.version",
+        )
+    problems = list(schema_problems(document, measurements_schema()))
+    if not problems:
+        problems = _order_problems(document)
+    if problems:
+        lines = value_lines(text)
+        errors = [
+            RosaadlError(
+                message, Location(file=file, line=lines.get(path) or _nearest_line(lines, path), path=path)
+            )
+            for path, message in problems
+        ]
+        first = errors[0]
+        more = f" (and {len(errors) - 1} more)" if len(errors) > 1 else ""
+        raise ParseError(
+            f"not a valid measurements file: {first.location.path}: {first.message}{more}",
+            first.location,
+            errors=list(errors),
+        )
+    return _build(document, file)
+
+
+def _nearest_line(lines: dict[str, int], path: str) -> int | None:
+    """The line of ``path``'s closest enclosing value (a missing member: its object's line)."""
+    while path:
+        if path in lines:
+            return lines[path]
+        cut = max(path.rfind("."), path.rfind("["))
+        if cut <= 0:
+            break
+        path = path[:cut]
+    return lines.get("$")
+
+
+def read_measurements(path: str | Path) -> Measurements:
+    """The measurements of the file ``path`` (see :func:`parse_measurements`)."""
+    target = Path(path)
+    name = str(target)
+    try:
+        if target.stat().st_size > MAX_FILE_BYTES:
+            raise ParseError(f"a measurements file is at most {MAX_FILE_BYTES} bytes", file=name)
+        data = target.read_bytes()
+    except OSError as exc:
+        raise ParseError(f"cannot read the measurements: {exc.strerror or exc}", file=name) from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ParseError(f"not UTF-8 text (byte {exc.start})", file=name) from None
+    return parse_measurements(text, name)

@@ -1,0 +1,128 @@
+"""A measured run (``measurements.json``) as the rows ``rosaadl library add-profile`` turns into
+platform-dependent implementations, for the board and core the run was bound to.
+
+:func:`run_measurement_rows` gives one :class:`~rosaadl.workflow.library_measurements.Measurement`
+per measured thread with a dispatch:
+
+* the node: its process's classifier without the implementation (``processes[].classifier``,
+  ``nd_usb_cam::usb_cam_nd``), else its ROS node name (``processes[].node``, the model's
+  ``ROS_Properties::Node_Name``), else the process's instance name;
+* the thread: the last segment of its instance path;
+* the PDM ``<board>_<core>``: the run's ``run.board`` and ``run.core`` (required);
+* the execution time: the thread's mean CPU time per dispatch, plus its share of what its
+  process spent beyond its callbacks (executor, serialization, DDS), in proportion to its own
+  CPU time, so that the PDM's Σ CET / Period is the node's measured CPU load, as a profile of a
+  whole node measures it;
+* the Period: the PIM's (a run may scale the rates; nothing is written);
+* ``Data_Size``: the bytes per message of the one topic the thread publishes, when measured;
+* no ``Raw_MIPS``, ``IPC`` or ``MIPSBudget``: a run without hardware counters measures no
+  instruction rate, and the library leaves out what was not measured.
+
+Rows are numbered after ``$.threads`` (row 1 is ``$.threads[0]``) and located at its line.
+"""
+
+from __future__ import annotations
+
+import re
+
+from rosaadl.errors import Diagnostic, Location, ParseError, RosaadlError
+from rosaadl.importers.json_schema import value_lines
+from rosaadl.importers.measurements import Measurements, parse_measurements
+from rosaadl.workflow.library_measurements import Measurement, MeasurementError
+
+__all__ = ["run_measurement_rows", "node_cet_share"]
+
+_PART = re.compile(r"[A-Za-z0-9](?:_?[A-Za-z0-9])*\Z")
+
+
+def node_cet_share(measurements: Measurements) -> dict[str, float]:
+    """Per thread path: the factor its mean CPU time is multiplied by so that its process's
+    threads add up to the process's measured CPU load (1 where the process is not measured or
+    spent no more than its callbacks)."""
+    loads: dict[str, float] = {}
+    for thread in measurements.threads:
+        if thread.load_percent is not None:
+            key = thread.process or thread.path.rpartition(".")[0]
+            loads[key] = loads.get(key, 0.0) + thread.load_percent
+    factor = {}
+    for process in measurements.processes:
+        own = loads.get(process.path, 0.0)
+        if own > 0:
+            factor[process.path] = max(1.0, process.cpu_load_percent / own)
+    return {t.path: factor.get(t.process or t.path.rpartition(".")[0], 1.0) for t in measurements.threads}
+
+
+def run_measurement_rows(
+    data: bytes, file: str
+) -> tuple[list[Measurement], list[RosaadlError], list[Diagnostic]]:
+    """The rows of the measured run in ``data`` (the bytes of a ``measurements.json``), the
+    problems (located) and warnings; a file that is not a valid ``measurements.json`` raises a
+    located :class:`~rosaadl.errors.ParseError`."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ParseError(f"not UTF-8 text (byte {exc.start})", file=file) from None
+    measurements = parse_measurements(text, file)
+    lines = value_lines(text)
+    errors: list[RosaadlError] = []
+    notes: list[Diagnostic] = []
+    board, core = measurements.run_value("board"), measurements.run_value("core")
+    for name, value in (("board", board), ("core", core)):
+        if value is None or not _PART.match(value):
+            shown = "none" if value is None else repr(value)
+            errors.append(
+                MeasurementError(
+                    f"run.{name}: the board and core the run was bound to name the profile "
+                    f"(<board>_<core>, letters, digits and single underscores); found {shown}",
+                    Location(
+                        file=file,
+                        line=lines.get(f"$.run.{name}", lines.get("$.run", 1)),
+                        path=f"$.run.{name}",
+                    ),
+                )
+            )
+    if errors:
+        return [], errors, notes
+    nodes = {
+        p.path: (p.classifier.partition(".")[0] if p.classifier else None)
+        or p.node
+        or p.path.rpartition(".")[2]
+        for p in measurements.processes
+    }
+    share = node_cet_share(measurements)
+    sizes: dict[str, list[int | None]] = {}
+    for topic in measurements.topics:
+        if topic.port:
+            sizes.setdefault(topic.port.rpartition(".")[0], []).append(topic.bytes_per_message)
+    rows = []
+    for index, thread in enumerate(measurements.threads):
+        where = f"$.threads[{index}]"
+        if thread.execution_time_us is None or thread.execution_time_us.mean <= 0:
+            notes.append(
+                Diagnostic(
+                    "warning",
+                    f"{where}: thread {thread.path} has no dispatch with CPU time; it gets no profile",
+                    Location(file=file, line=lines.get(where), path=where),
+                )
+            )
+            continue
+        process = thread.process or thread.path.rpartition(".")[0]
+        published = sizes.get(thread.path, [])
+        rows.append(
+            Measurement(
+                file=file,
+                row=index + 1,
+                line=lines.get(where, 1),
+                node=nodes.get(process, process.rpartition(".")[2]),
+                thread=thread.path.rpartition(".")[2],
+                board=board,
+                core=core,
+                period_ns=None,
+                cet_ns=max(1, round(thread.execution_time_us.mean * share[thread.path] * 1000)),
+                mips_raw=None,
+                ipc=None,
+                data_size=published[0] if len(published) == 1 else None,
+                processor=None,
+            )
+        )
+    return rows, errors, notes

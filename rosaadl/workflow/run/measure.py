@@ -1,0 +1,315 @@
+"""``rosaadl run … --measure``: the nodes' trace files and ``/proc`` aggregated into
+``measurements.json`` (the schema of :mod:`rosaadl.importers.measurements`, ``docs/measurements.md``).
+
+With the node parameter ``rosaadl.trace`` true, each generated node writes
+``<run folder>/trace/<node>.<pid>.trace`` (the ``Tracer`` of the generated code): a header
+(``N`` its name, ``T ident thread`` its threads, ``O topic port`` its out ports) then one line
+per event, times from the system-wide ``CLOCK_MONOTONIC``:
+``D thread release start end cpu``, ``P topic seq published dispatch_start``,
+``R topic seq published received``. Only events inside the measured window (from the moment
+every node is up to the stop) count.
+
+* per thread: dispatches, period mean and jitter (max − min of the release intervals),
+  execution time (CPU time of the dispatch's own thread), response time (release to end),
+  deadline misses (the node's ``<thread>.deadline`` parameter);
+* per process: CPU load from ``/proc/PID/stat`` (user + system time over the window) and the
+  core it was bound to (its CPU affinity, when it is one core);
+* per topic: messages, rate, bytes per message (the run's monitor) and bandwidth, with the model
+  port that publishes it;
+* per chain (a flow of the model as processes in order): end-to-end latency, each message on the
+  chain's last topic traced back through the latest message on the previous topic that its
+  publisher's node had received before the publishing dispatch began (data age, as an
+  asynchronous system has it).
+"""
+
+from __future__ import annotations
+
+import bisect
+import itertools
+import os
+import statistics
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "TRACE_FOLDER",
+    "MEASUREMENTS_FILE",
+    "TRACE_PARAMETERS",
+    "NodeTrace",
+    "ChainPlan",
+    "read_trace",
+    "read_traces",
+    "process_cpu_seconds",
+    "process_core",
+    "measurements_document",
+    "chain_plans",
+]
+
+#: The folder of the run folder the nodes write their traces into.
+TRACE_FOLDER = "trace"
+#: The file ``--measure`` writes into the run folder.
+MEASUREMENTS_FILE = "measurements.json"
+#: A trace file larger than this is read up to it (a run of hours at the tracking example's rates
+#: is about 100 MB).
+_MAX_TRACE_BYTES = 512 * 1024 * 1024
+
+
+def TRACE_PARAMETERS(folder: Path) -> list[tuple[str, object]]:  # noqa: N802 - a constant of the run
+    """The node parameters that switch the tracer on, writing into ``folder``."""
+    return [("rosaadl.trace", True), ("rosaadl.trace_dir", str(folder))]
+
+
+@dataclass
+class NodeTrace:
+    """What one node's trace file holds."""
+
+    node: str = ""
+    threads: dict[str, str] = field(default_factory=dict)  # ident -> thread path below the process
+    ports: dict[str, str] = field(default_factory=dict)  # topic -> port path below the process
+    dispatches: dict[str, list[tuple[int, int, int, int]]] = field(default_factory=dict)
+    published: dict[tuple[str, int], int] = field(default_factory=dict)  # (topic, seq) -> dispatch start
+    received: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)  # topic -> (recv, seq, pub)
+    bad_lines: int = 0
+
+
+@dataclass(frozen=True)
+class ChainPlan:
+    """A flow of the model as the nodes it crosses, in order, and the topic of each step."""
+
+    name: str
+    topics: tuple[tuple[str, str, str], ...]  # (topic, publishing node, subscribing node)
+
+
+def read_trace(path: Path, window: tuple[int, int] | None = None) -> NodeTrace:
+    """The events of one trace file (a line cut short by a killed node is counted, not read)."""
+    trace = NodeTrace()
+    low, high = window if window is not None else (0, 1 << 63)
+    with path.open("r", encoding="utf-8", errors="replace") as handle:
+        text = handle.read(_MAX_TRACE_BYTES)
+    for line in text.splitlines():
+        parts = line.split(" ")
+        try:
+            kind = parts[0]
+            if kind == "N" and len(parts) == 2:
+                trace.node = parts[1]
+            elif kind == "T" and len(parts) == 3:
+                trace.threads[parts[1]] = parts[2]
+            elif kind == "O" and len(parts) == 3:
+                trace.ports[parts[1]] = parts[2]
+            elif kind == "D" and len(parts) == 6:
+                release, start, end, cpu = (int(p) for p in parts[2:])
+                if low <= release and end <= high:
+                    trace.dispatches.setdefault(parts[1], []).append((release, start, end, cpu))
+            elif kind == "P" and len(parts) == 5:
+                trace.published[(parts[1], int(parts[2]))] = int(parts[4])
+            elif kind == "R" and len(parts) == 5:
+                seq, pub, recv = int(parts[2]), int(parts[3]), int(parts[4])
+                trace.received.setdefault(parts[1], []).append((recv, seq, pub))
+            else:
+                trace.bad_lines += 1
+        except ValueError:
+            trace.bad_lines += 1
+    for events in trace.received.values():
+        events.sort()
+    return trace
+
+
+def read_traces(folder: Path, window: tuple[int, int] | None = None) -> dict[str, NodeTrace]:
+    """Node full name → its trace (the files of ``folder``; a node traced twice: the later file)."""
+    traces = {}
+    for path in sorted(folder.glob("*.trace"), key=lambda p: p.stat().st_mtime):
+        trace = read_trace(path, window)
+        if trace.node:
+            traces[trace.node] = trace
+    return traces
+
+
+def process_cpu_seconds(pid: int) -> float | None:
+    """User + system CPU time of process ``pid`` so far (``/proc/PID/stat``), None when gone."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    fields = text.rpartition(")")[2].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def process_core(pid: int) -> int | None:
+    """The one core process ``pid`` may run on, None when it may run on several (or is gone)."""
+    try:
+        cores = os.sched_getaffinity(pid)
+    except OSError:
+        return None
+    return next(iter(cores)) if len(cores) == 1 else None
+
+
+def _stats(values: list[float]) -> dict[str, float] | None:
+    if not values:
+        return None
+    return {
+        "min": round(min(values), 3),
+        "mean": round(statistics.fmean(values), 3),
+        "max": round(max(values), 3),
+    }
+
+
+def _thread_row(process_path: str, thread: str, events: list, deadline_s: float | None) -> dict[str, Any]:
+    events = sorted(events)
+    releases = [e[0] for e in events]
+    gaps = [(b - a) / 1000 for a, b in itertools.pairwise(releases)]
+    responses = [(e[2] - e[0]) / 1000 for e in events]
+    deadline_us = deadline_s * 1e6 if deadline_s else None
+    row: dict[str, Any] = {
+        "path": f"{process_path}.{thread}",
+        "process": process_path,
+        "dispatches": len(events),
+        "period_us": None
+        if not gaps
+        else {"mean": round(statistics.fmean(gaps), 3), "jitter": round(max(gaps) - min(gaps), 3)},
+        "execution_time_us": _stats([e[3] / 1000 for e in events]),
+        "response_time_us": _stats(responses),
+        "deadline_misses": sum(1 for r in responses if deadline_us and r > deadline_us),
+    }
+    if deadline_us:
+        row["deadline_us"] = round(deadline_us, 3)
+    return row
+
+
+def _origin(traces: dict[str, NodeTrace], hops: tuple, index: int, seq: int, pub: int) -> int | None:
+    """When the data of message ``seq`` (published at ``pub``) on hop ``index`` of a chain left
+    the chain's first node: the publish time on the first hop, reached back through the latest
+    message of the previous hop the publishing node had received when its dispatch began."""
+    while index > 0:
+        topic, publisher, _subscriber = hops[index]
+        node = traces.get(publisher)
+        started = None if node is None else node.published.get((topic, seq))
+        if started is None:
+            return None
+        before = node.received.get(hops[index - 1][0], [])
+        at = bisect.bisect_right(before, (started, 1 << 63, 1 << 63)) - 1
+        if at < 0:
+            return None
+        _recv, seq, pub = before[at]
+        index -= 1
+    return pub
+
+
+def chain_latencies(traces: dict[str, NodeTrace], chain: ChainPlan) -> list[float]:
+    """End-to-end latencies (µs) of every message on the chain's last topic (see the docstring)."""
+    hops = chain.topics
+    if not hops:
+        return []
+    topic, _publisher, subscriber = hops[-1]
+    last = traces.get(subscriber)
+    if last is None:
+        return []
+    out = []
+    for recv, seq, pub in last.received.get(topic, ()):
+        origin = _origin(traces, hops, len(hops) - 1, seq, pub)
+        if origin is not None and recv >= origin:
+            out.append((recv - origin) / 1000)
+    return out
+
+
+def measurements_document(
+    *,
+    nodes: Iterable[Any],
+    traces: dict[str, NodeTrace],
+    cpu_load: dict[str, float],
+    cores: dict[str, int | None],
+    topics: Iterable[Any],
+    chains: Iterable[ChainPlan],
+    run: dict[str, Any],
+    root: str | None = None,
+) -> dict[str, Any]:
+    """The ``measurements.json`` document of a run: ``nodes`` are the plan's
+    :class:`~rosaadl.workflow.run.plan.NodeLaunch` (full name, process path, parameters),
+    ``cpu_load`` and ``cores`` by node full name, ``topics`` the run's topic results."""
+    threads, processes, ports = [], [], {}
+    for node in nodes:
+        trace = traces.get(node.full_name)
+        parameters = dict(node.parameters)
+        if node.full_name in cpu_load:
+            row: dict[str, Any] = {
+                "path": node.path,
+                "node": node.name,
+                "cpu_load_percent": round(cpu_load[node.full_name], 4),
+                "core": cores.get(node.full_name),
+            }
+            processes.append(row)
+        if trace is None:
+            continue
+        for topic, port in trace.ports.items():
+            ports.setdefault(topic, f"{node.path}.{port}")
+        for ident, thread in sorted(trace.threads.items(), key=lambda item: item[1]):
+            deadline = parameters.get(f"{ident}.deadline")
+            deadline_s = float(deadline) if isinstance(deadline, (int, float)) and deadline else None
+            threads.append(_thread_row(node.path, thread, trace.dispatches.get(ident, []), deadline_s))
+    topic_rows = []
+    for topic in topics:
+        size = topic.bytes_per_message
+        row = {
+            "name": topic.name,
+            "type": topic.type,
+            "messages": int(topic.messages),
+            "rate_hz": round(topic.rate_hz or 0.0, 4),
+            "bandwidth_bytes_per_s": round((topic.rate_hz or 0.0) * (size or 0), 3),
+        }
+        if topic.name in ports:
+            row["port"] = ports[topic.name]
+        if size is not None:
+            row["bytes_per_message"] = int(round(size))
+        topic_rows.append(row)
+    chain_rows = []
+    for chain in chains:
+        latencies = chain_latencies(traces, chain)
+        chain_rows.append(
+            {
+                "name": chain.name,
+                "topics": [hop[0] for hop in chain.topics],
+                "samples": len(latencies),
+                "latency_us": _stats(latencies),
+            }
+        )
+    document: dict[str, Any] = {"format": "rosaadl-measurements", "version": 1}
+    if root:
+        document["model"] = {"root": root}
+    document.update(
+        {"run": run, "threads": threads, "processes": processes, "topics": topic_rows, "chains": chain_rows}
+    )
+    return document
+
+
+def chain_plans(
+    nodes: list[Any], topics: list[Any], flows: Iterable[tuple[str, list[str]]]
+) -> list[ChainPlan]:
+    """The chains of the model's flows (name, thread instance paths in order) as topics between
+    the plan's nodes: each thread belongs to the node whose process path holds it; each change of
+    node is one topic the first node publishes and the next subscribes to (a flow whose step has no
+    such topic is left out)."""
+    out = []
+    for name, threads in flows:
+        order: list[Any] = []
+        for thread in threads:
+            owner = max(
+                (n for n in nodes if thread == n.path or thread.startswith(n.path + ".")),
+                key=lambda n: len(n.path),
+                default=None,
+            )
+            if owner is not None and (not order or order[-1] is not owner):
+                order.append(owner)
+        hops = []
+        for first, second in itertools.pairwise(order):
+            topic = next(
+                (t for t in topics if first.full_name in t.publishers and second.full_name in t.subscribers),
+                None,
+            )
+            if topic is None:
+                hops = []
+                break
+            hops.append((topic.name, first.full_name, second.full_name))
+        if hops:
+            out.append(ChainPlan(name, tuple(hops)))
+    return out

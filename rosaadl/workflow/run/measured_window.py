@@ -1,0 +1,92 @@
+"""The measured window of a ``rosaadl run … --measure``: the trace folder the nodes write into,
+``/proc`` sampled when the S seconds begin and end, and ``measurements.json`` written at the end
+(see :mod:`~rosaadl.workflow.run.measure`)."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+from typing import Any
+
+from rosaadl.fileio import atomic_write_text
+from rosaadl.workflow.run.measure import (
+    MEASUREMENTS_FILE,
+    TRACE_FOLDER,
+    TRACE_PARAMETERS,
+    measurements_document,
+    process_core,
+    process_cpu_seconds,
+    read_traces,
+)
+
+__all__ = ["MeasuredWindow"]
+
+
+class MeasuredWindow:
+    """One measured run: ``parameters()`` for the nodes, ``begin()`` and ``end()`` around the
+    S seconds, ``write()`` once the nodes have stopped (and flushed their traces)."""
+
+    def __init__(self, folder: Path, processes: list[Any]) -> None:
+        self.folder = folder
+        self.traces = (folder / TRACE_FOLDER).resolve()
+        self.processes = processes  # filled as the nodes start
+        self.traces.mkdir(parents=True, exist_ok=True)
+        for old in self.traces.glob("*.trace"):  # the traces of an earlier run of the folder
+            old.unlink()
+        self.started_ns = self.ended_ns = 0
+        self.cpu_before: dict[str, float | None] = {}
+        self.cpu_after: dict[str, float | None] = {}
+        self.cores: dict[str, int | None] = {}
+
+    def parameters(self) -> list[tuple[str, object]]:
+        return TRACE_PARAMETERS(self.traces)
+
+    def _sample(self) -> dict[str, float | None]:
+        return {
+            p.node.full_name: process_cpu_seconds(p.process.pid) if p.process is not None else None
+            for p in self.processes
+        }
+
+    def begin(self) -> None:
+        self.cpu_before = self._sample()
+        self.cores = {
+            p.node.full_name: process_core(p.process.pid) for p in self.processes if p.process is not None
+        }
+        self.started_ns = time.monotonic_ns()
+
+    def end(self) -> None:
+        self.ended_ns = time.monotonic_ns()
+        self.cpu_after = self._sample()
+
+    def write(self, plan: Any, result: Any, options: Any) -> Path:
+        """Aggregate the traces and the samples into ``measurements.json`` (checked against its
+        schema, written atomically); its path."""
+        from rosaadl.importers.measurements import parse_measurements
+
+        seconds = max(1e-9, (self.ended_ns - self.started_ns) / 1e9)
+        cpu_load = {
+            name: (self.cpu_after[name] - before) / seconds * 100
+            for name, before in self.cpu_before.items()
+            if before is not None and self.cpu_after.get(name) is not None
+        }
+        document = measurements_document(
+            nodes=plan.nodes,
+            traces=read_traces(self.traces, (self.started_ns, self.ended_ns)),
+            cpu_load=cpu_load,
+            cores=self.cores,
+            topics=result.topics,
+            chains=options.chains,
+            run={
+                "duration_s": round(seconds, 3),
+                "emulate": bool(options.emulate),
+                "host_cores": os.cpu_count() or 1,
+            },
+            root=options.root,
+        )
+        text = json.dumps(document, indent=2) + "\n"
+        target = self.folder / MEASUREMENTS_FILE
+        parse_measurements(text, str(target))  # what is written reads back
+        atomic_write_text(target, text)
+        return target

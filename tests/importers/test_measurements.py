@@ -1,0 +1,128 @@
+"""measurements.json: the schema, the reader, and located refusals of truncated or edited files."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from rosaadl.errors import ParseError
+from rosaadl.importers.json_schema import schema_problems, value_lines
+from rosaadl.importers.measurements import measurements_schema, parse_measurements, read_measurements
+from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+
+
+def test_the_sample_reads_into_typed_rows(tmp_path) -> None:
+    target = tmp_path / "measurements.json"
+    target.write_text(tracking_measurements_text())
+    read = read_measurements(target)
+    assert read.root == "sys_tracking::tracking.impl"
+    assert [t.path for t in read.threads] == [
+        "rem_trk_sw.usbcam.image_broadcaster",
+        "rem_trk_sw.poscmd.cmd_publisher",
+    ]
+    broadcaster = read.threads[0]
+    assert broadcaster.execution_time_us.mean == 2330.0
+    assert broadcaster.load_percent == pytest.approx(2330 / 33340 * 100)
+    assert read.processes[1].core == 1
+    assert read.topics[0].port == "rem_trk_sw.usbcam.image_broadcaster.pub_msg"
+    assert read.chains[0].latency_us.max == 120000.0
+    assert read.run_value("duration_s") == 15.0
+
+
+def test_the_schema_is_versioned_and_documents_every_member() -> None:
+    schema = measurements_schema()
+    assert schema["properties"]["version"] == {"const": 1}
+    assert set(schema["$defs"]) >= {"thread", "process", "topic", "chain", "statistics"}
+
+
+def test_a_truncated_file_is_refused_at_its_line(tmp_path) -> None:
+    text = tracking_measurements_text()
+    target = tmp_path / "measurements.json"
+    target.write_text(text[: len(text) // 2])
+    with pytest.raises(ParseError) as caught:
+        read_measurements(target)
+    assert caught.value.location.file == str(target)
+    assert caught.value.location.line == len(text[: len(text) // 2].splitlines())
+
+
+def test_a_hand_edited_value_is_refused_at_its_json_path_and_line() -> None:
+    document = tracking_measurements()
+    document["threads"][1]["dispatches"] = "many"
+    text = tracking_measurements_text(document)
+    with pytest.raises(ParseError) as caught:
+        parse_measurements(text, "m.json")
+    where = caught.value.location
+    assert where.path == "$.threads[1].dispatches"
+    assert text.splitlines()[where.line - 1].strip() == '"dispatches": "many",'
+    assert "expected integer, found string" in caught.value.message
+
+
+@pytest.mark.parametrize(
+    ("edit", "path", "words"),
+    [
+        (lambda d: d["processes"][0].update(cpu=3), "$.processes[0].cpu", "unknown member"),
+        (lambda d: d["chains"][0].pop("samples"), "$.chains[0]", "missing 'samples'"),
+        (lambda d: d["topics"][0].update(rate_hz=-1), "$.topics[0].rate_hz", "below the minimum"),
+        (lambda d: d.update(format="other"), "$.format", "expected"),
+        (
+            lambda d: d["threads"][0]["execution_time_us"].update(min=9e9),
+            "$.threads[0].execution_time_us",
+            "min <= mean",
+        ),
+        (
+            lambda d: d["threads"][0].update(deadline_misses=True),
+            "$.threads[0].deadline_misses",
+            "found boolean",
+        ),
+    ],
+)
+def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
+    document = tracking_measurements()
+    edit(document)
+    with pytest.raises(ParseError) as caught:
+        parse_measurements(tracking_measurements_text(document), "m.json")
+    assert caught.value.location.path == path
+    assert caught.value.location.line is not None
+    assert words in caught.value.message
+
+
+def test_an_unknown_version_is_named() -> None:
+    document = tracking_measurements()
+    document["version"] = 2
+    with pytest.raises(ParseError, match="version 2 is not known"):
+        parse_measurements(json.dumps(document))
+
+
+def test_every_problem_is_listed() -> None:
+    document = tracking_measurements()
+    document["threads"][0]["dispatches"] = -1
+    document["topics"][0]["messages"] = 1.5
+    with pytest.raises(ParseError) as caught:
+        parse_measurements(json.dumps(document, indent=1))
+    assert [e.location.path for e in caught.value.errors] == [
+        "$.threads[0].dispatches",
+        "$.topics[0].messages",
+    ]
+
+
+@pytest.mark.parametrize(
+    "text", ["", "[]", "null", "{" * 100_000, '{"format": "rosaadl-measurements"', "\ufeff{}"]
+)
+def test_hostile_texts_give_a_parse_error(text) -> None:
+    with pytest.raises(ParseError):
+        parse_measurements(text)
+
+
+def test_value_lines_follow_nesting_and_odd_keys() -> None:
+    text = '{\n "a": [1,\n {"b": 2, "c": [3,\n 4]}],\n "d x": null\n}'
+    assert value_lines(text) == {
+        "$": 1, "$.a": 2, "$.a[0]": 2, "$.a[1]": 3, "$.a[1].b": 3, "$.a[1].c": 3,
+        "$.a[1].c[0]": 3, "$.a[1].c[1]": 4, '$["d x"]': 5,
+    }  # fmt: skip
+
+
+def test_schema_problems_know_integers_and_booleans() -> None:
+    schema = {"type": "integer"}
+    assert list(schema_problems(3.0, schema)) == []
+    assert list(schema_problems(True, schema)) == [("$", "expected integer, found boolean")]
