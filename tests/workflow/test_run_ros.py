@@ -155,6 +155,7 @@ def test_every_node_starts_and_exits_0_on_stop(runs, case):
     for node in report["nodes"]:
         assert node["started"] and node["exit_code"] == 0, (node, err[-4000:])
     assert code == 0 and report["ok"], (report["errors"], err[-4000:])
+    assert f"ROS domain {report['ros_domain_id']} (LOCALHOST)" in err
 
 
 @pytest.mark.parametrize("case", CASES)
