@@ -786,6 +786,7 @@ class NodeBuilder:
             "deque",
             "main",
             "THREAD_COUNT",
+            "_rclpy",
         }
         counts: dict[str, int] = {}
         for itype in interfaces:
@@ -814,6 +815,7 @@ class NodeBuilder:
         imports.append(("rclpy", []))
         imports.append(("rclpy.callback_groups", cls.group_kinds))
         imports.append(("rclpy.executors", ["ExternalShutdownException", "MultiThreadedExecutor"]))
+        imports.append(("rclpy.impl.implementation_singleton", ["rclpy_implementation as _rclpy"]))
         imports.append(("rclpy.node", ["Node"]))
         if cls.ports:
             imports.append(

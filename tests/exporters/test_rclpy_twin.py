@@ -112,6 +112,11 @@ def test_warning_not_warn_and_a_clean_exit_on_sigint(library_ws):
         assert "except (KeyboardInterrupt, ExternalShutdownException):" in main
         assert "rclpy.try_shutdown()" in main and "rclpy.shutdown()" not in main
         assert "node.start_timers()" in main.split("executor.spin()")[0]
+        # a SIGINT while the executor makes its first wait set: the RCLError of the shut-down
+        # context is the stop asked for; with the context still up it is raised
+        handler = main.split("except _rclpy.RCLError:")[1].split("finally:")[0]
+        assert "if rclpy.ok():" in handler and "raise" in handler
+        assert "from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy" in text
 
 
 def test_timer_dispatches_are_released_on_their_schedule(library_ws):

@@ -4,13 +4,17 @@ converted to AADL (``client-server``: services, with an interface package of ``.
 ``publish-subscribe``: a custom message, with an interface package of ``.msg``).
 
 Each application is generated, built and run once for the module (the three runs and builds take
-about two minutes on 2 cores); the tests read the verb's JSON report. Then SIGINT is sent to every
+about two minutes on 2 cores); the tests read the verb's JSON report. During each run, once every
+node is up, ``rosaadl import ros2-graph --measure`` reads the live graph on the run's ROS domain
+(the round trip through real ROS 2: its nodes, topics, types, publisher/subscriber pairs and
+measured rates against the run plan's). Then SIGINT is sent to every
 node of the tracking application 20 times while the workload twin loads the machine.
 """
 
 from __future__ import annotations
 
 import json
+import re
 import signal
 import subprocess
 import sys
@@ -31,6 +35,11 @@ from rosaadl.workflow.run.processes import node_command, start_node, stop_nodes
 pytestmark = [*runtime_marks(), pytest.mark.slow]
 
 DURATION = 15
+#: Seconds of discovery and of rate sampling of the live graph's import, inside the run's 15 s.
+GRAPH_WAIT = 5
+GRAPH_MEASURE = 6
+#: Seconds the import's measuring subscriptions may take to match the publishers.
+GRAPH_MATCHING = 2
 #: Relative error allowed between a measured and a modelled rate (the issue's acceptance).
 RATE_TOLERANCE = 0.10
 SIGINT_ROUNDS = 20
@@ -65,7 +74,12 @@ def _model(case: str, folder: Path) -> tuple[Path, str]:
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    """``case -> (exit code, JSON report, stderr, run folder)``, each case run once, when first asked."""
+    """``case -> (exit code, JSON report, stderr, run folder)``, each case run once, when first asked.
+
+    While it runs, once every node is up (the ``running`` progress line), the live graph is
+    imported on the run's ROS domain (``import ros2-graph --measure``, :data:`GRAPH_WAIT` +
+    :data:`GRAPH_MEASURE` seconds, inside the run's 15 s) into ``RUN_DIR/graph.json``, its JSON
+    report into ``RUN_DIR/graph-report.json``."""
     done: dict[str, tuple[int, dict, str, Path]] = {}
 
     def run(case: str) -> tuple[int, dict, str, Path]:
@@ -74,25 +88,63 @@ def runs(tmp_path_factory):
             aadl, root = _model(case, folder)
             out = folder / "run"
             began = time.monotonic()
-            result = _rosaadl(
-                "run",
-                str(aadl),
-                "--root",
-                root,
-                "--duration",
-                str(DURATION),
-                "--emulate",
-                "-o",
-                str(out),
-                "--format",
-                "json",
-            )
+            command = ["run", str(aadl), "--root", root, "--duration", str(DURATION), "--emulate"]
+            code, stdout, stderr = _run_importing_graph([*command, "-o", str(out), "--format", "json"], out)
             print(f"{case}: rosaadl run took {time.monotonic() - began:.1f} s")
-            report = json.loads(result.stdout) if result.stdout.strip() else {}
-            done[case] = (result.returncode, report, result.stderr, out)
+            report = json.loads(stdout) if stdout.strip() else {}
+            done[case] = (code, report, stderr, out)
         return done[case]
 
     return run
+
+
+def _run_importing_graph(args: list[str], out: Path) -> tuple[int, str, str]:
+    """``rosaadl ARGS`` (a run writing into ``out``), the live graph imported while it runs."""
+    process = subprocess.Popen(
+        [sys.executable, "-m", "rosaadl", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        stdin=subprocess.DEVNULL,
+        text=True,
+    )
+    importer = None
+    lines: list[str] = []
+    try:
+        domain = None
+        for line in process.stderr:
+            lines.append(line)
+            found = re.match(r"ROS domain (\d+) \((\w+)\)", line)
+            if found:
+                domain, reach = found.groups()
+            if line.startswith("running ") and domain is not None:
+                importer = _import_graph(out, domain, reach)
+                break
+        stdout, stderr = process.communicate(timeout=900)
+        if importer is not None:
+            report, err = importer.communicate(timeout=120)
+            (out / "graph-report.json").write_text(report or json.dumps({"stderr": err}))
+    finally:
+        for child in (process, importer):
+            if child is not None and child.poll() is None:
+                child.kill()
+                child.wait()
+    return process.returncode, stdout, "".join(lines) + stderr
+
+
+def _import_graph(out: Path, domain: str, reach: str) -> subprocess.Popen:
+    """``rosaadl import ros2-graph`` of the run's domain, as a user joins it: the run's discovery
+    range, its workspace sourced (the types of its interface packages, to measure their topics)."""
+    env = {**run_environment(out / "install"), "ROS_AUTOMATIC_DISCOVERY_RANGE": reach}
+    command = ["--format", "json", "import", "ros2-graph", "--domain-id", domain]
+    command += ["--wait", str(GRAPH_WAIT), "--measure", str(GRAPH_MEASURE), "-o", str(out / "graph.json")]
+    return subprocess.Popen(
+        [sys.executable, "-m", "rosaadl", *command],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        stdin=subprocess.DEVNULL,
+        text=True,
+        env=env,
+    )
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -103,6 +155,7 @@ def test_every_node_starts_and_exits_0_on_stop(runs, case):
     for node in report["nodes"]:
         assert node["started"] and node["exit_code"] == 0, (node, err[-4000:])
     assert code == 0 and report["ok"], (report["errors"], err[-4000:])
+    assert f"ROS domain {report['ros_domain_id']} (LOCALHOST)" in err
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -259,3 +312,109 @@ def test_a_failed_build_is_a_located_error(runs):
     assert report["ok"] is False and report["nodes"] == []
     assert "colcon build failed" in report["errors"][0]["message"]
     assert report["errors"][0]["file"] == str(folder / "src")
+
+
+# --------------------------------------------------------------------------- the live graph
+
+
+def _graph(folder: Path):
+    """The ROSMOD project imported from the live graph during the run, and the import's report."""
+    from rosaadl import model
+
+    report_file = folder / "graph-report.json"
+    assert report_file.is_file(), "the live graph was not imported (no `running` line?)"
+    report = json.loads(report_file.read_text())
+    assert report.get("ok"), report
+    return model.load(folder / "graph.json"), report
+
+
+def _measurable(rate_hz: float) -> bool:
+    """Whether the import's measurement must give a topic of this model rate a period: the
+    rate's gaps fit :data:`~rosaadl.workflow.ros2_graph.MIN_SAMPLES` messages into the sampling
+    less :data:`GRAPH_MATCHING` seconds."""
+    from rosaadl.workflow.ros2_graph import MIN_SAMPLES
+
+    return rate_hz * (GRAPH_MEASURE - GRAPH_MATCHING) >= MIN_SAMPLES
+
+
+def _token(topic: str) -> str:
+    """The name part the graph import gives the timer of a measured periodic topic."""
+    return topic.strip("/").replace("/", "_") or "topic"
+
+
+def _imported_graph(project) -> tuple[set[str], dict, dict, list[str]]:
+    """(node full names, topic -> (type, publishers, subscribers), topic -> measured Hz, the
+    service ends) of the imported graph. Every node of these applications is in the root
+    namespace (asserted on the plan): the ROSMOD node's name under ``/`` is its full name."""
+    nodes: set[str] = set()
+    topics: dict[str, tuple[set, set, set]] = {}
+    rates: dict[str, float] = {}
+    services: list[str] = []
+    for deployment in project.deployments:
+        for node in deployment.nodes:
+            full = f"/{node.name}"
+            nodes.add(full)
+            for instance in node.componentInstances:
+                component = instance.component
+                names = {p.key: p.value for p in component.properties}
+                for port in component.ports:
+                    topic = names[f"{port.name}.Topic"]
+                    if port.eClass.name not in ("Publisher", "Subscriber"):
+                        services.append(f"{port.eClass.name} {topic} ({port.type}) of {full}")
+                        continue
+                    types, pubs, subs = topics.setdefault(topic, (set(), set(), set()))
+                    types.add(port.type)
+                    (pubs if port.eClass.name == "Publisher" else subs).add(full)
+                for timer in component.timers:
+                    rates[timer.name.removesuffix("_timer")] = 1 / float(timer.period)
+    return nodes, {t: (sorted(a), sorted(b), sorted(c)) for t, (a, b, c) in topics.items()}, rates, services
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_live_graph_imports_as_the_model(runs, case, record_property):
+    """Round trip through real ROS 2: the graph imported while the application runs has the
+    model's nodes, topics, message types and publisher/subscriber pairs, and every periodic
+    publisher measured gets the model's rate within 10 % (one fast enough to give the import's
+    fewest samples in its sampling must be measured). What cannot be compared is recorded
+    (``record_property``) and printed: services and clients (the run plan lists topics only)
+    and the rate of a topic no node of the model publishes on, whose model rate is unknown, with
+    several publishers, or too slow to measure (``publish-subscribe``'s 0.5 Hz in 6 s)."""
+    from rosaadl.workflow.ros2_graph import ros_type
+
+    code, _, err, folder = runs(case)
+    plan = load_plan(folder)
+    assert code == 0, err[-4000:]
+    project, report = _graph(folder)
+    assert all(n.namespace.strip("/") == "" for n in plan.nodes), plan.nodes
+    nodes, topics, rates, services = _imported_graph(project)
+    assert nodes == {n.full_name for n in plan.nodes}, (report["warnings"], err[-3000:])
+    expected = {
+        t.name: ([ros_type(t.type)], sorted(t.publishers), sorted(t.subscribers)) for t in plan.topics
+    }
+    assert topics == expected, report["warnings"]
+    by_token = {_token(t.name): t for t in plan.topics}
+    measured = {by_token[token].name: hz for token, hz in rates.items()}
+    periodic = [t for t in plan.topics if t.model_rate_hz and len(t.publishers) == 1]
+    for topic in periodic:  # measured: within 10 %; fast enough to be measured: it must be
+        if topic.name in measured:
+            off = abs(measured[topic.name] - topic.model_rate_hz) / topic.model_rate_hz
+            assert off <= RATE_TOLERANCE, (topic.name, measured[topic.name], topic.model_rate_hz)
+        else:
+            assert not _measurable(topic.model_rate_hz), (topic, report["warnings"])
+    assert set(measured) <= {t.name for t in periodic}, (measured, periodic)
+    not_compared = services + [
+        f"rate of {t.name}: "
+        + (
+            "no node of the model publishes on it"
+            if not t.publishers
+            else "its model rate is not known"
+            if not t.model_rate_hz
+            else "several publishers"
+            if len(t.publishers) > 1
+            else f"{t.model_rate_hz:g} Hz, too slow to measure in {GRAPH_MEASURE} s"
+        )
+        for t in plan.topics
+        if t.name not in measured
+    ]
+    record_property("not_compared", not_compared)
+    print(f"{case}: measured {measured}; not compared: {not_compared}")

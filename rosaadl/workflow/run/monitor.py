@@ -25,6 +25,7 @@ import time
 from pathlib import Path
 
 __all__ = [
+    "MONITOR_NODE",
     "READY_SUFFIX",
     "UP_SUFFIX",
     "monitor_command",
@@ -35,6 +36,9 @@ __all__ = [
     "main",
 ]
 
+#: The monitor's ROS node: hidden (a leading ``_``), so that ``ros2 node list`` and
+#: ``rosaadl import ros2-graph`` of a running application show the application's nodes only.
+MONITOR_NODE = "_rosaadl_run_monitor"
 READY_SUFFIX = ".ready"
 UP_SUFFIX = ".up"
 _DEPTH = 50
@@ -151,7 +155,7 @@ def main(argv: list[str] | None = None) -> int:
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.append(True))
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-    node = rclpy.create_node("rosaadl_run_monitor")
+    node = rclpy.create_node(MONITOR_NODE)
     counts: dict[str, dict] = {}
 
     def counter(entry: dict):

@@ -10,6 +10,12 @@ The run folder holds ``src`` (the packages), ``build``/``install``/``log`` (colc
 ``build.log``, ``rosaadl-run.json`` (the run plan) and ``run/`` (each node's output, the
 monitor's output and counts).
 
+The nodes talk on the run's ROS domain (``ROS_DOMAIN_ID``, see
+:mod:`~rosaadl.workflow.run.environment`), on this host only: a progress line names it before the
+nodes start (``ROS domain N``), and the report gives it (``ros_domain_id``), so that a tool can
+join the running graph (``ros2 topic list``, ``rosaadl import ros2-graph --domain-id N``) with
+``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``.
+
 A run is *ok* when every node started, ran to the stop and exited 0 on SIGINT, every message
 type could be loaded, and, with ``emulate``, every topic some node of the model publishes on
 carried at least one message. A measured rate more than :data:`RATE_TOLERANCE` away from the
@@ -99,6 +105,7 @@ class RunResult:
 
     folder: Path
     duration: float
+    domain_id: int | None = None  # the ROS_DOMAIN_ID the nodes talk on
     nodes: list[NodeResult] = field(default_factory=list)
     topics: list[TopicResult] = field(default_factory=list)
     errors: list[Diagnostic] = field(default_factory=list)
@@ -114,6 +121,7 @@ class RunResult:
         return {
             "run_folder": str(self.folder),
             "duration_s": self.duration,
+            "ros_domain_id": self.domain_id,
             **({"measurements": str(self.measurements)} if self.measurements else {}),
             "nodes": [
                 {
@@ -187,6 +195,8 @@ def run_application(
         if not (install / "lib").is_dir():
             raise RunError("the run folder has not been built: run it without --no-build", file=str(folder))
     env = run_environment(install)
+    result.domain_id = _domain_id(env)
+    progress(f"ROS domain {env['ROS_DOMAIN_ID']} ({env.get('ROS_AUTOMATIC_DISCOVERY_RANGE', 'any host')})")
     logs = folder / RUN_LOGS
     logs.mkdir(exist_ok=True)
     here = machine(realtime=options.realtime)
@@ -225,6 +235,14 @@ def run_application(
         result.measurements = window.write(plan, result, options)
         progress(f"wrote {result.measurements}")
     return result
+
+
+def _domain_id(env: dict[str, str]) -> int | None:
+    """The run's ``ROS_DOMAIN_ID`` as a number (None when the caller's environment set no number)."""
+    try:
+        return int(env.get("ROS_DOMAIN_ID", ""))
+    except ValueError:
+        return None
 
 
 def _counts(result: RunResult, counts_file: Path) -> dict:
