@@ -269,10 +269,13 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
                 )
             )
     everything = [c for e in executors for c in e.callbacks]
-    transmission_reader = PropertyReader(diagnostics)
+    reader = PropertyReader(diagnostics)
+    transmissions: dict[int, Fraction] = {}  # a connection's, once for every chain through it
 
     def sent(conn: Any) -> Fraction:
-        return connection_transmission_us(conn, transmission_reader, mode)
+        if id(conn) not in transmissions:
+            transmissions[id(conn)] = connection_transmission_us(conn, reader, mode)
+        return transmissions[id(conn)]
 
     def bound(callback: Callback) -> Fraction | None:
         return bounds.get(callback.path)
@@ -280,7 +283,6 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
     links = callback_links(root, everything, mode)
     gaps = release_gaps(links, bound)
     chains = []
-    reader = PropertyReader(diagnostics)
     for ci in _component_instances(root):
         for flow in ci.endToEndFlows:
             members = flow_callbacks(flow, everything)

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate
-from rosaadl.importers.ros2_package.node_classes import dotted
+from rosaadl.importers.ros2_package.node_classes import dotted, module_imports
 
 __all__ = ["EntryPoint", "LaunchAction", "entry_points", "launch_actions", "module_constants"]
 
@@ -173,16 +173,7 @@ def _node_wrappers(tree: ast.Module, imports: dict[str, str]) -> list[str]:
 
 def launch_actions(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> list[LaunchAction]:
     """The ``launch_ros.actions.Node(...)`` calls of a Python launch file."""
-    imports: dict[str, str] = {}
-    for stmt in ast.walk(tree):
-        if isinstance(stmt, ast.ImportFrom) and stmt.module:
-            for alias in stmt.names:
-                imports[alias.asname or alias.name] = f"{stmt.module}.{alias.name}"
-        elif isinstance(stmt, ast.Import):
-            for alias in stmt.names:
-                imports[alias.asname or alias.name.split(".")[0]] = (
-                    alias.asname and alias.name or alias.name.split(".")[0]
-                )
+    imports = module_imports(tree)
     scope = Scope(module_constants(tree))
     for wrapper in _node_wrappers(tree, imports):
         imports[wrapper] = _LAUNCH_NODE[0]

@@ -19,7 +19,7 @@ from rosaadl.importers.ros2_package.building import period_seconds
 from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate, stored_names
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
 
-__all__ = ["ModuleNodes", "read_module", "dotted"]
+__all__ = ["ModuleNodes", "read_module", "dotted", "module_imports"]
 
 #: The node methods that create the constructs read, and the positions of their arguments.
 CREATES = {
@@ -61,7 +61,9 @@ def dotted(node: ast.expr, imports: dict[str, str]) -> str | None:
     return ".".join(reversed(parts))
 
 
-def _imports(tree: ast.Module) -> dict[str, str]:
+def module_imports(tree: ast.Module) -> dict[str, str]:
+    """What each name a module imports stands for: ``{"Node": "rclpy.node.Node", "np": "numpy"}``
+    (relative imports left out)."""
     found: dict[str, str] = {}
     for stmt in ast.walk(tree):
         if isinstance(stmt, ast.Import):
@@ -102,7 +104,7 @@ class _Reader:
         self.file = file
         self.warnings = warnings
         self.package = package
-        self.imports = _imports(tree)
+        self.imports = module_imports(tree)
         self.constants = self._module_constants()
         self.consumed: set[int] = set()  # ids of the create_* calls read into a node
         self.result = ModuleNodes()
