@@ -9,8 +9,9 @@ bytes, reliable when every publisher of the topic is reliable, else best effort,
 publisher matches: a best-effort reader of a reliable publisher loses whole messages when one
 of their fragments is lost, so that a 921 kB image published at 20 Hz was seen at 6.5 Hz, and
 irregularly), volatile (which every durability matches): a topic with one publisher whose
-messages come at a steady rate (inter-arrival times varying by less than :data:`STEADY` of
-their mean) gives that publisher a timer of the measured period; the largest serialized message
+messages come at a steady rate (:func:`steady_period`: most inter-arrival times within
+:data:`STEADY` of their median, whatever a stall of the machine did to the others) gives that
+publisher a timer of the measured period; the largest serialized message
 seen (less the 4-byte CDR encapsulation header) becomes the ``Data_Size`` of its type where the
 type has no fixed size (the project property ``Data_Size:<pkg/Type>``, which
 ``transforms.rosmod_to_aadl`` reads).
@@ -48,7 +49,15 @@ from rosaadl.importers.ros2_package.facts import (
     TimerFact,
 )
 
-__all__ = ["read_graph", "observe_graph", "ros_type", "STEADY", "INFRASTRUCTURE_TOPICS"]
+__all__ = [
+    "read_graph",
+    "observe_graph",
+    "ros_type",
+    "steady_period",
+    "STEADY",
+    "STEADY_SHARE",
+    "INFRASTRUCTURE_TOPICS",
+]
 
 #: Topics every ROS 2 node has; not part of the application.
 INFRASTRUCTURE_TOPICS = ("/rosout", "/parameter_events")
@@ -63,9 +72,11 @@ _NODE_SERVICES = (
     "get_type_description",
 )
 _TOPIC_KINDS = ("Publisher", "Subscriber")
-#: A topic is periodic when the standard deviation of its inter-arrival times is below this
-#: share of their mean.
+#: A topic is periodic when :data:`STEADY_SHARE` of its inter-arrival times are within this share
+#: of their median (:func:`steady_period`).
 STEADY = 0.25
+#: The share of inter-arrival times that must be regular for a topic to be periodic.
+STEADY_SHARE = 0.75
 #: Fewest messages from which a rate is measured.
 MIN_SAMPLES = 4
 #: The CDR encapsulation header in front of every serialized message.
@@ -246,9 +257,9 @@ class _Observer:
             self.warn(f"{len(found)} message(s) in {seconds:g} s: too few to measure a rate", topic)
             return
         times = [t for t, _ in found]
-        gaps = [b - a for a, b in zip(times, times[1:], strict=False)]
-        mean = statistics.fmean(gaps)
-        if mean <= 0 or statistics.pstdev(gaps) > STEADY * mean:
+        period = steady_period(times)
+        if period is None:
+            mean = (times[-1] - times[0]) / (len(times) - 1)
             self.warn(f"messages come at an irregular rate (mean gap {mean * 1e3:.1f} ms): no timer", topic)
             return
         if len(ends) > 1:
@@ -256,9 +267,30 @@ class _Observer:
             self.warn(f"several publishers ({names}): the period is not given to one", topic)
             return
         fact, port = ends[0]
-        period = Decimal(str(round(mean, 6)))
+        period = Decimal(str(round(period, 6)))
         token = topic.strip("/").replace("/", "_") or "topic"
         fact.timers.append(TimerFact(f"{token}_timer", period, Location(path=f"{fact.key} {topic}")))
+
+
+def steady_period(times: list[float]) -> float | None:
+    """The period of messages arriving at ``times`` (seconds, ascending), or None if they do not
+    come at a steady rate.
+
+    With ``m`` the median gap between successive arrivals, the rate is steady when at least
+    :data:`STEADY_SHARE` of the gaps lie within ``m ± STEADY·m``; the period is the mean of those
+    gaps. A stall of the machine (one long gap: a timer skips the periods it missed) or a burst
+    of messages queued meanwhile changes neither, where the mean and the spread of all the gaps
+    would call a periodic publisher irregular."""
+    gaps = [b - a for a, b in zip(times, times[1:], strict=False)]
+    if not gaps:
+        return None
+    median = statistics.median(gaps)
+    if median <= 0:
+        return None
+    regular = [gap for gap in gaps if abs(gap - median) <= STEADY * median]
+    if len(regular) < STEADY_SHARE * len(gaps):
+        return None
+    return statistics.fmean(regular)
 
 
 def _message_class(type_name: str) -> Any:

@@ -145,14 +145,26 @@ node = rclpy.create_node('probe')
 seen = {'image': [], 'point': 0}
 node.create_subscription(Image, sys.argv[1], lambda m: seen['image'].append(len(m.data)), 10)
 node.create_subscription(Point, sys.argv[2], lambda m: seen.update(point=seen['point'] + 1), 10)
-end = time.monotonic() + float(sys.argv[3])
-while time.monotonic() < end:
+images, points, end = int(sys.argv[3]), int(sys.argv[4]), time.monotonic() + float(sys.argv[5])
+while time.monotonic() < end and (len(seen['image']) < images or seen['point'] < points):
     rclpy.spin_once(node, timeout_sec=0.1)
 print(json.dumps(seen))
 rclpy.try_shutdown()
 """
 #: The ``Data_Size`` of ros_data::video_stream (921 KByte), the image topic's type in the model.
 IMAGE_BYTES = 921_000
+#: Images and points the probe waits for, and emulated dispatches of the tracker's image thread.
+IMAGES, POINTS, DISPATCHES = 10, 5, 10
+
+
+def _wait_for(path: Path, text: str, timeout: float, count: int = 1) -> bool:
+    """Whether ``text`` appears ``count`` times in the file ``path`` within ``timeout`` seconds."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if path.is_file() and path.read_text(errors="replace").count(text) >= count:
+            return True
+        time.sleep(0.05)
+    return False
 
 
 def _emulated(log: str, thread: str) -> list[float]:
@@ -183,10 +195,17 @@ def test_emulated_nodes_burn_their_cet_and_publish_their_data_size(built, tmp_pa
         with open(tmp_path / f"{name}.log", "w") as log:
             processes[name] = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
     topics = (dict(camera["remappings"])["rgb_image_raw_out"], dict(tracker["remappings"])["point_out"])
+    tracker_log = tmp_path / "ocv_color_tracking.log"
     try:
+        # counts, not a time window: a shared machine may stall for seconds
         probe = subprocess.run(
-            [sys.executable, "-c", PROBE, *topics, "3.5"], env=env, capture_output=True, text=True, timeout=90
+            [sys.executable, "-c", PROBE, *topics, str(IMAGES), str(POINTS), "60"],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=90,
         )
+        _wait_for(tracker_log, "image_tracker: emulated", 60, count=DISPATCHES)
     finally:
         for process in processes.values():
             process.send_signal(signal.SIGINT)
@@ -195,10 +214,10 @@ def test_emulated_nodes_burn_their_cet_and_publish_their_data_size(built, tmp_pa
     assert codes == {"usb_cam": 0, "ocv_color_tracking": 0}, logs
     assert probe.returncode == 0, probe.stderr[-3000:]
     seen = json.loads(probe.stdout)
-    assert len(seen["image"]) >= 10 and set(seen["image"]) == {IMAGE_BYTES}, seen["image"][:20]
-    assert seen["point"] >= 5
+    assert len(seen["image"]) >= IMAGES and set(seen["image"]) == {IMAGE_BYTES}, seen["image"][:20]
+    assert seen["point"] >= POINTS
     dispatches = _emulated(logs["ocv_color_tracking"], "image_tracker")
-    assert len(dispatches) >= 10, logs["ocv_color_tracking"][-3000:]
+    assert len(dispatches) >= DISPATCHES, logs["ocv_color_tracking"][-3000:]
     assert all(abs(cpu - cet_ms) <= 0.05 * cet_ms for cpu in dispatches), dispatches
     assert len(_emulated(logs["usb_cam"], "image_broadcaster")) >= 20
     assert "Point has no uint8[] or string field; the default message is sent" in logs["ocv_color_tracking"]
@@ -236,15 +255,6 @@ def test_each_thread_runs_at_its_priority(built, tmp_path):
 
 #: SIGINTs sent to every node of the demo (the issue's acceptance).
 SIGINT_ROUNDS = 20
-
-
-def _wait_for(path: Path, text: str, timeout: float) -> bool:
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if path.is_file() and text in path.read_text(errors="replace"):
-            return True
-        time.sleep(0.05)
-    return False
 
 
 @pytest.mark.slow

@@ -260,3 +260,37 @@ def test_an_empty_graph_is_an_error_and_no_output(monkeypatch, tmp_path, capsys)
 
 def test_the_graph_reader_is_in_the_workflow_layer():
     assert Path(ros2_graph.__file__).parent.name == "workflow"
+
+
+# --------------------------------------------------------------------------- steady rates
+
+
+def _arrivals(gaps: list[float]) -> list[float]:
+    times = [0.0]
+    for gap in gaps:
+        times.append(times[-1] + gap)
+    return times
+
+
+def test_a_jittery_timer_is_periodic_with_its_mean_period():
+    chance = random.Random(7)
+    gaps = [0.05 + chance.uniform(-0.004, 0.004) for _ in range(100)]
+    period = ros2_graph.steady_period(_arrivals(gaps))
+    assert period == pytest.approx(0.05, rel=0.01)
+
+
+def test_a_stall_of_the_machine_and_the_burst_after_it_keep_the_period():
+    """One 2.4 s gap (a stalled machine: the timer skips the periods it missed), then five
+    messages queued meanwhile delivered at once: the mean gap is half again the period and the spread several
+    times the period, but the publisher is still the 20 Hz timer it is."""
+    gaps = [0.05] * 40 + [2.4] + [0.0005] * 5 + [0.05] * 40
+    assert ros2_graph.steady_period(_arrivals(gaps)) == pytest.approx(0.05)
+    assert sum(gaps) / len(gaps) > 1.4 * 0.05
+
+
+def test_irregular_arrivals_have_no_period():
+    chance = random.Random(3)
+    assert ros2_graph.steady_period(_arrivals([chance.expovariate(20) for _ in range(200)])) is None
+    assert ros2_graph.steady_period(_arrivals([0.01, 0.1] * 50)) is None
+    assert ros2_graph.steady_period([1.0]) is None
+    assert ros2_graph.steady_period([1.0, 1.0, 1.0]) is None
