@@ -118,6 +118,7 @@ def _scaled(callbacks: Sequence[Callback], executor: Executor, base: int) -> lis
             int((c.deadline or c.period) * base),
             c.priority,
             executor.rank(c),
+            tuple(int(t * base) for t in c.streams),
         )
         for c in callbacks
     ]
@@ -131,10 +132,10 @@ def executor_bounds(executor: Executor, interfering: Sequence[Callback]) -> dict
     if not timed:
         return result
     others = [c for c in interfering if c.period is not None]
-    times = [t for c in (*timed, *others) for t in (c.period, c.wcet, c.deadline or c.period)]
+    times = [t for c in (*timed, *others) for t in (c.period, c.wcet, c.deadline or c.period, *c.streams)]
     base = time_base(times)
     items = _scaled(timed, executor, base)
-    preempt = [(int(c.period * base), int(c.wcet * base)) for c in others]
+    preempt = [(int(t * base), int(c.wcet * base)) for c in others for t in (c.period, *c.streams)]
     horizon = max(10**7, 1000 * max(c.period for c in items))
     policy = executor.policy
     common = None
@@ -161,7 +162,7 @@ def _gantt(executor: Executor) -> tuple[Fraction, tuple[tuple[str, int, Fraction
     timed = [c for c in executor.callbacks if c.period is not None and c.wcet > 0]
     if not timed:
         return Fraction(0), ()
-    base = time_base([t for c in timed for t in (c.period, c.wcet, c.deadline or c.period)])
+    base = time_base([t for c in timed for t in (c.period, c.wcet, c.deadline or c.period, *c.streams)])
     items = _scaled(timed, executor, base)
     span = min(math.lcm(*(c.period for c in items)), 2 * max(c.period for c in items))
     run = simulate_executor(
@@ -185,9 +186,14 @@ def _gantt(executor: Executor) -> tuple[Fraction, tuple[tuple[str, int, Fraction
 
 
 def _with_arrivals(root: Any, executors: Sequence[Executor], mode: Any) -> tuple[Executor, ...]:
-    """Executors whose callbacks without ``Period`` (subscriptions, as ROSMOD's) take the least
-    period of the callbacks that publish to them as minimum inter-arrival time (an
-    event-triggered link releases one job per message)."""
+    """Executors whose callbacks without ``Period`` (subscriptions, as ROSMOD's) take their
+    release streams from the callbacks that publish to them (an event-triggered link releases one
+    job per message): every topic connection that feeds the callback adds the streams of its
+    writer (of the fastest one, where any callback of a ROSMOD component may write it), so a
+    subscription fed over two topics counts the messages of both — Casini et al., ECRTS 2019,
+    join such inputs as the sum (OR) of their event models. A callback no topic releases takes,
+    as before, the least period of the callbacks linked to it inside its node; so does a writer
+    met again around a cycle of subscriptions."""
     everything = [c for e in executors for c in e.callbacks]
     periods = {c.path: c.period for c in everything}
     links = callback_links(root, everything, mode)
@@ -200,15 +206,41 @@ def _with_arrivals(root: Any, executors: Sequence[Executor], mode: Any) -> tuple
             if target.period is None and source is not None and (current is None or source < current):
                 periods[target.path] = source
                 changed = True
+    topics: dict[str, dict[int, list[Callback]]] = {}
+    for link in links:
+        if link.connection is not None:
+            feeding = topics.setdefault(link.destination.path, {})
+            feeding.setdefault(id(link.connection), []).append(link.source)
+    known: dict[str, tuple[Fraction, ...]] = {}
+
+    def streams(callback: Callback, visiting: frozenset[str]) -> tuple[Fraction, ...]:
+        if callback.period is not None:
+            return (callback.period, *callback.streams)
+        if callback.path in known:
+            return known[callback.path]
+        fallback = periods[callback.path]
+        if callback.path in visiting or callback.path not in topics:
+            return (fallback,) if fallback is not None else ()
+        result: list[Fraction] = []
+        for writers in topics[callback.path].values():
+            options = [streams(w, visiting | {callback.path}) for w in writers]
+            options = [o for o in options if o]
+            if options:
+                result.extend(min(options, key=lambda o: (min(o), -len(o))))
+        if not result and fallback is not None:
+            result.append(fallback)
+        known[callback.path] = tuple(sorted(result))
+        return known[callback.path]
+
     result = []
     for executor in executors:
-        callbacks = tuple(
-            replace(c, period=periods[c.path], deadline=c.deadline or periods[c.path])
-            if c.period is None
-            else c
-            for c in executor.callbacks
-        )
-        result.append(replace(executor, callbacks=callbacks))
+        callbacks = []
+        for c in executor.callbacks:
+            found = streams(c, frozenset()) if c.period is None else ()
+            if found:
+                c = replace(c, period=found[0], deadline=c.deadline or found[0], streams=found[1:])
+            callbacks.append(c)
+        result.append(replace(executor, callbacks=tuple(callbacks)))
     return tuple(result)
 
 

@@ -80,6 +80,9 @@ class Callback:
     order: int  #: registration order inside its executor (model order)
     periodic: bool
     thread: Any = None
+    #: minimum inter-arrival times (µs) of further release streams: a subscription fed over
+    #: several topics is released by each of them (``executor_analysis`` sets them)
+    streams: tuple[Fraction, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -148,3 +148,31 @@ def test_an_end_to_end_flow_is_a_chain_with_its_latency_as_deadline():
     assert chains["e2e"].met is False
     assert any("exceeds its Latency 12000 us" in d.message for d in result.diagnostics)
     assert chains["n1.a -> n2.b"].reaction_time == 17_000
+
+
+def test_a_subscription_fed_by_two_topics_counts_a_message_of_each():
+    """Two timers (T = 100 ms, C = 1 ms) of a lower-priority node publish on two connections to
+    one subscription (C = 10 ms, no Period) alone in its node: one message of each can arrive
+    within 1 ms, and the executor runs them one after the other, so the second completes up to
+    20 ms after the first arrived (19 ms after its own arrival). Its arrivals are the two
+    publishers' streams together (Casini et al., ECRTS 2019: the move_base case study's
+    sensor2mem, fed by /scan and /tF, an OR-join of the two event models), not the faster one's
+    period alone, which would claim 10 ms."""
+    root = system(
+        component("pubs", "process", callback("a1", 100_000, 1_000, kind="Timer"),
+                  callback("a2", 100_000, 1_000, kind="Timer")),
+        component("node", "process", callback("s", None, 10_000, kind="Subscriber", dispatch="Sporadic"),
+                  props=[pa("Thread_Properties::Priority", new("IntegerValue", value=5)),
+                         pa("ROS_Properties::Executor_Kind", enum("Single_Threaded"))]),
+    )  # fmt: skip
+    pubs, node = root.componentInstances[1:]
+    inp = new("FeatureInstance", name="i", feature="i", category="event data port", direction="in")
+    node.componentInstances[0].featureInstances.append(inp)
+    for publisher in pubs.componentInstances:
+        out = new("FeatureInstance", name="o", feature="o", category="event data port", direction="out")
+        publisher.featureInstances.append(out)
+        root.connectionInstances.append(
+            new("ConnectionInstance", name=f"{publisher.name}.o -> s.i", kind="portConnection",
+                source=out, destination=inp)
+        )  # fmt: skip
+    assert wcrts(analyze_executors(root))["s"] == 20_000
