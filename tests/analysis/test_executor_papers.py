@@ -201,8 +201,9 @@ def test_a_stored_link_waits_for_the_readers_next_release():
 # unit of 100 µs. The configuration with one reservation of budget 1 per period 1 is a dedicated
 # core (its supply bound is ``sbf(t) = t``), where the paper's reservation analysis is the plain
 # executor analysis. Each callback: (name, kind, the artefact's scheduling parameter, WCET, period
-# of the topic or timer that releases it: 12.5 Hz = 800, the timer 1 Hz = 10000, /goal 0.1 Hz;
-# sensor2mem, which /scan and /tF both release in the case study, with one of them).
+# of the topic or timer that releases it: 12.5 Hz = 800, the timer 1 Hz = 10000, /goal 0.1 Hz).
+# sensor2mem is released by both /scan and /tF (the artefact joins them with an ``ORJoin``): two
+# release streams of 800.
 MOVE_BASE = [
     ("sensor2mem", "subscription", 1, 2, 800),
     ("local_costmap", "subscription", 3, 20, 800),
@@ -212,17 +213,18 @@ MOVE_BASE = [
     ("global_planner_timed", "timer", 2, 2000, 10000),
     ("pose_estimator", "subscription", 2, 2, 800),
 ]
+STREAMS = {"sensor2mem": (800,)}
 #: The artefact's per-callback bound (``case_study/ros.py``, ``DefaultScheduler.compute_wcrt``
 #: with the chain analysis disabled, pyCPA of IDA-TUBS/pycpa commit 824e794), each callback on the
-#: dedicated core released strictly periodically (no release jitter) by its own trigger.
+#: dedicated core released strictly periodically (no release jitter) by its trigger(s) above.
 ARTEFACT_WCRT = {
-    "sensor2mem": 6720,
-    "local_costmap": 6292,
-    "global_costmap": 5528,
-    "local_planner": 4924,
-    "global_planner_goalset": 5520,
+    "sensor2mem": 6722,
+    "local_costmap": 6308,
+    "global_costmap": 5542,
+    "local_planner": 4936,
+    "global_planner_goalset": 5530,
     "global_planner_timed": 4000,
-    "pose_estimator": 6720,
+    "pose_estimator": 6738,
 }
 #: The artefact's end-to-end bound of the chain /odom -> pose_estimator -> local_costmap ->
 #: local_planner -> /cmd_vel (``ros.e2e_latency`` with the chain analysis, the paper's Section 5:
@@ -231,15 +233,21 @@ ARTEFACT_WCRT = {
 ARTEFACT_CHAIN = 4936
 
 
+def _move_base_timings():
+    rank = {"timer": 0, "subscription": 10}
+    return [CallbackTiming(n, t, c, t, 0, rank[k] + p, STREAMS.get(n, ())) for n, k, p, c, t in MOVE_BASE]
+
+
 def test_casini_ecrts2019_case_study_on_a_dedicated_core():
     """Eq. (6) of Casini et al. gives, for every polling-point callback, the artefact's numbers:
-    for the four 12.5 Hz subscriptions (whose bound exceeds their period, so the starvation
-    argument of Blaß et al. does not apply) ``polling_response_time`` is exactly the artefact's.
+    for the five 12.5 Hz subscriptions (whose bound exceeds their period, so the starvation
+    argument of Blaß et al. does not apply; ``sensor2mem`` with its two release streams, as the
+    artefact's OR-join) ``polling_response_time`` is exactly the artefact's.
 
-    ``global_planner_goalset`` (T = 10 s): eq. (6) is 5520 as in the artefact; the round argument
+    ``global_planner_goalset`` (T = 10 s): eq. (6) is 5530 as in the artefact; the round argument
     of Blaß et al., RTSS 2021 lowers it to 4428: every other callback runs at most twice before
     it completes (``local_planner``, ordered after it, once), the timer once (it releases one job
-    in 4428 + its own bound 5520 < 10000): 2000 + 2 * (2 + 20 + 100 + 2) + 180 + 2000 = 4428.
+    in 4428 + its own bound < 10000): 2000 + 2 * (2 + 20 + 100 + 2) + 180 + 2000 = 4428.
 
     ``global_planner_timed`` (a timer): the paper analyses ROS 2 Crystal, whose executor asks every
     timer ``is_ready()`` at every scheduling point, before the snapshot of the other callbacks
@@ -249,8 +257,7 @@ def test_casini_ecrts2019_case_study_on_a_dedicated_core():
     wait set of the polling point like the other callbacks, which rosaadl models
     (``docs/executors.md``): its bound of the timer, 4304, is at least the Crystal one.
     """
-    rank = {"timer": 0, "subscription": 10}
-    timings = [CallbackTiming(n, t, c, t, 0, rank[k] + p) for n, k, p, c, t in MOVE_BASE]
+    timings = _move_base_timings()
     ours = {c.name: polling_response_time(timings, i) for i, c in enumerate(timings)}
     periodic = [n for n, _, _, _, t in MOVE_BASE if t == 800]
     assert {n: ours[n] for n in periodic} == {n: ARTEFACT_WCRT[n] for n in periodic}
@@ -263,7 +270,7 @@ def test_casini_ecrts2019_case_study_on_a_dedicated_core():
 
 def test_casini_ecrts2019_case_study_chain():
     """The chain /odom -> pose_estimator -> local_costmap -> local_planner: rosaadl adds the
-    callbacks' own bounds (all event-triggered links: 6720 + 6292 + 4924 = 17936), the paper's
+    callbacks' own bounds (all event-triggered links: 6738 + 6308 + 4936 = 17982), the paper's
     Section 5 analyses the three callbacks of one executor as one chain (the chain's jobs counted
     once, with the last callback's position in the rounds: 4936 in the artefact). Ours is the
     safe, coarser bound; the chain analysis is not implemented (``docs/executors.md``)."""
@@ -277,7 +284,7 @@ def test_casini_ecrts2019_case_study_chain():
         "odom_to_cmd_vel", on_chain, links,
         lambda cb: Fraction(ARTEFACT_WCRT[cb.path.split(".")[1]]), lambda _: Fraction(0),
     )  # fmt: skip
-    assert bound.reaction_time == 6720 + 6292 + 4924 == 17936 >= ARTEFACT_CHAIN
+    assert bound.reaction_time == 6738 + 6308 + 4936 == 17982 >= ARTEFACT_CHAIN
 
 
 # Casini et al., ECRTS 2019, Section 3, Figure 3: the scenario its artefact replays on a real
@@ -373,8 +380,7 @@ def test_casini_ecrts2019_case_study_with_chained_releases_stays_below_the_bound
     estimator's completions and the local planner by the local costmap's (the release jitter the
     artefact propagates and rosaadl's subscription periods leave out), from 40 random phasings of
     the sources, played to a fixed point: no callback exceeds rosaadl's bound."""
-    rank = {"timer": 0, "subscription": 10}
-    timings = [CallbackTiming(n, t, c, t, 0, rank[k] + p) for n, k, p, c, t in MOVE_BASE]
+    timings = _move_base_timings()
     names = [c.name for c in timings]
     bounds = [polling_response_time(timings, i) for i in range(len(timings))]
     fed_by = {"local_costmap": "pose_estimator", "global_costmap": "pose_estimator",
@@ -384,7 +390,9 @@ def test_casini_ecrts2019_case_study_with_chained_releases_stays_below_the_bound
         releases = {n: [] for n in names}
         for name, _, _, _, period in MOVE_BASE:
             if name not in fed_by:
-                releases[name] = list(range(rng.randrange(800), 60_000, period))
+                for stream in (period, *STREAMS.get(name, ())):
+                    releases[name] += range(rng.randrange(800), 60_000, stream)
+                releases[name].sort()
         for _ in range(20):
             run = simulate_executor(timings, "polling", [releases[n] for n in names])
             done = {n: [] for n in names}
