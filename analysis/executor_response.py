@@ -13,9 +13,12 @@ preemptive analysis (their request-bound function is added to every demand below
 Time is discrete (Prosa's model, which ``response-time-analysis`` implements): a job released at
 time ``a`` may start at ``a``, and a job that started before ``a`` blocks a more urgent job for at
 most ``wcet - 1``. :func:`rbf` is the request-bound function, the work of the jobs of a callback
-released in any half-open window of length ``delta``: ``ceil(delta / T) * C``; a callback with
-further release ``streams`` (a subscription fed over several topics, each publisher releasing it
-independently) requests the sum over its streams, and every ``rbf_j`` below is that sum.
+released in any half-open window of length ``delta``: ``ceil(delta / T) * C``, or
+``ceil((delta + J) / T) * C`` for a release jitter ``J`` (a subscription released by a callback
+whose response time varies); a callback with further release ``streams`` (a subscription fed
+over several topics, each publisher releasing it independently) requests the sum over its
+streams, and every ``rbf_j`` below is that sum. The offsets ``A`` searched are then the steps of
+the jittered functions, ``k * T - J``.
 
 Each bound follows the busy-window principle (Bozhko & Brandenburg, ECRTS 2020): a bound ``L`` on
 the busy window, then, for every relevant offset ``A < L`` of the job under analysis in it, the
@@ -60,29 +63,36 @@ class CallbackTiming(NamedTuple):
     #: minimum inter-arrival times of further independent release streams (a subscription fed
     #: over several topics: one stream per topic), whose jobs add to those of ``period``
     streams: tuple[int, ...] = ()
+    #: release jitter of each stream, ``period`` first (missing: 0): a stream of period ``T`` and
+    #: jitter ``J`` releases ``ceil((t + J) / T)`` jobs in a window ``t``
+    jitters: tuple[int, ...] = ()
 
 
-Interference = Sequence[tuple[int, int]]
+#: ``(period, wcet)`` or ``(period, wcet, jitter)`` of each preempting thread or callback
+Interference = Sequence[tuple[int, ...]]
 
 
-def rbf(period: int, wcet: int, delta: int) -> int:
-    """The request-bound function: work of the jobs released in a half-open window of ``delta``."""
+def rbf(period: int, wcet: int, delta: int, jitter: int = 0) -> int:
+    """The request-bound function: work of the jobs released in a half-open window of ``delta``
+    by a stream of minimum inter-arrival time ``period`` and release jitter ``jitter``."""
     if delta <= 0 or wcet <= 0:
         return 0
-    return -(-delta // period) * wcet
+    return -(-(delta + jitter) // period) * wcet
 
 
-def _periods(callback: CallbackTiming) -> tuple[int, ...]:
-    return (callback.period, *callback.streams)
+def _streams(callback: CallbackTiming) -> list[tuple[int, int]]:
+    """``(period, jitter)`` of each release stream of the callback."""
+    periods = (callback.period, *callback.streams)
+    return [(p, callback.jitters[k] if k < len(callback.jitters) else 0) for k, p in enumerate(periods)]
 
 
 def _requests(callback: CallbackTiming, delta: int) -> int:
     """The callback's request-bound function: the sum of :func:`rbf` over its release streams."""
-    return sum(rbf(period, callback.wcet, delta) for period in _periods(callback))
+    return sum(rbf(period, callback.wcet, delta, jitter) for period, jitter in _streams(callback))
 
 
 def _preemption(interference: Interference, delta: int) -> int:
-    return sum(rbf(t, c, delta) for t, c in interference)
+    return sum(rbf(t[0], t[1], delta, t[2] if len(t) > 2 else 0) for t in interference)
 
 
 def _fixed_point(rhs: Callable[[int], int], start: int, horizon: int, least: int = 0) -> int | None:
@@ -120,8 +130,8 @@ def _least(*values: int | None) -> int | None:
 
 
 def _offsets(steps: Iterable[tuple[int, int]], limit: int) -> list[int]:
-    """Every ``k * period + shift`` (``k >= 0``) in ``[0, limit)`` for each ``(period, shift)``."""
-    points: set[int] = set()
+    """0 and every ``k * period + shift`` (``k >= 0``) in ``[0, limit)`` for each ``(period, shift)``."""
+    points: set[int] = {0}
     for period, shift in steps:
         k = 0 if shift >= 0 else -(shift // period)
         value = k * period + shift
@@ -167,7 +177,7 @@ def fifo_response_time(
         return sum(_requests(c, offset + 1) for c in callbacks)
 
     return _worst_response(
-        _offsets(((p, 0) for c in callbacks for p in _periods(c)), window),
+        _offsets(((p, -j) for c in callbacks for p, j in _streams(c)), window),
         lambda offset, x: released(offset) + _preemption(interference, x),
         released,
         horizon,
@@ -209,7 +219,7 @@ def np_fixed_priority_response_time(
         start = x - me.wcet + 1
         return own(offset) + sum(_requests(c, start) for c in hep) + _preemption(interference, x)
 
-    return _worst_response(_offsets([(p, 0) for p in _periods(me)], window), demand, own, horizon)
+    return _worst_response(_offsets([(p, -j) for p, j in _streams(me)], window), demand, own, horizon)
 
 
 def np_edf_response_time(
@@ -236,8 +246,8 @@ def np_edf_response_time(
     window = busy_window(callbacks, interference, 0, horizon)
     if window is None:
         return None
-    steps = [(p, 0) for p in _periods(me)]
-    steps += [(p, c.deadline - me.deadline) for c in others for p in _periods(c)]
+    steps = [(p, -j) for p, j in _streams(me)]
+    steps += [(p, c.deadline - me.deadline - j) for c in others for p, j in _streams(c)]
 
     def own(offset: int) -> int:
         due = offset + me.deadline
@@ -284,11 +294,12 @@ def polling_response_time(
       ``R = C_i + sum_{j != i} C_j * min(1 + [rank_j <= rank_i], ceil((R + R_j) / T_j)) + I(R)``.
 
     A callback of several release streams (whose jobs may arrive together, so one may be pending
-    when the next arrives) keeps the first bound.
+    when the next arrives) keeps the first bound, and so does one whose first bound exceeds its
+    period less its release jitter (the least gap between its jobs).
     """
     me = callbacks[index]
     worst = _casini_bound(callbacks, index, interference, horizon)
-    if worst is None or me.streams or worst > me.period:
+    if worst is None or me.streams or worst > me.period - sum(me.jitters):
         return worst
     caps = []
     for k, other in enumerate(callbacks):
@@ -309,7 +320,7 @@ def polling_response_time(
 
 def _arrivals(callback: CallbackTiming, delta: int) -> int:
     """Jobs a callback releases in a half-open window of ``delta > 0``."""
-    return sum(-(-delta // period) for period in _periods(callback))
+    return sum(-(-(delta + jitter) // period) for period, jitter in _streams(callback))
 
 
 def _casini_bound(

@@ -377,9 +377,9 @@ def test_guenzel_ecrts2023_let_chain():
 
 def test_casini_ecrts2019_case_study_with_chained_releases_stays_below_the_bounds():
     """The case study's callbacks on one polling executor, the costmaps released by the pose
-    estimator's completions and the local planner by the local costmap's (the release jitter the
-    artefact propagates and rosaadl's subscription periods leave out), from 40 random phasings of
-    the sources, played to a fixed point: no callback exceeds rosaadl's bound."""
+    estimator's completions and the local planner by the local costmap's (with the release jitter
+    the artefact propagates), from 40 random phasings of the sources, played to a fixed point: no
+    callback exceeds even the bounds above, computed without that jitter."""
     timings = _move_base_timings()
     names = [c.name for c in timings]
     bounds = [polling_response_time(timings, i) for i in range(len(timings))]
