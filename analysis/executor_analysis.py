@@ -6,7 +6,9 @@ response time of each callback with the bound of its executor kind
 (:mod:`rosaadl.analysis.executor_response`): ROSMOD FIFO, PFIFO or EDF (non-preemptive), the
 ROS 2 single-threaded executor (polling points), the multi-threaded executor (busy window). The
 executor's thread is preempted by the threads of executors of higher or equal OS ``Priority`` on
-the same core, which are added as interference. Beside each bound it sets the preemptive-thread
+the same core, which are added as interference. A subscription is released by every topic that
+feeds it, with the release jitter its publishers pass on (their response times); the bounds of
+all executors are iterated until these jitters settle. Beside each bound it sets the preemptive-thread
 WCRT of the schedulability analysis (what OSATE and Cheddar assume). Chains and their bounds come
 from :mod:`rosaadl.analysis.cause_effect`. A simulation of each executor
 (:mod:`rosaadl.analysis.executor_simulation`) over its first busy stretch gives the Gantt chart
@@ -118,6 +120,8 @@ def _scaled(callbacks: Sequence[Callback], executor: Executor, base: int) -> lis
             int((c.deadline or c.period) * base),
             c.priority,
             executor.rank(c),
+            tuple(int(t * base) for t in c.streams),
+            tuple(int(j * base) for j in c.jitters),
         )
         for c in callbacks
     ]
@@ -132,9 +136,14 @@ def executor_bounds(executor: Executor, interfering: Sequence[Callback]) -> dict
         return result
     others = [c for c in interfering if c.period is not None]
     times = [t for c in (*timed, *others) for t in (c.period, c.wcet, c.deadline or c.period)]
+    times += [t for c in (*timed, *others) for t in (*c.streams, *c.jitters)]
     base = time_base(times)
     items = _scaled(timed, executor, base)
-    preempt = [(int(c.period * base), int(c.wcet * base)) for c in others]
+    preempt = [
+        (int(t * base), int(c.wcet * base), int(c.jitters[k] * base) if k < len(c.jitters) else 0)
+        for c in others
+        for k, t in enumerate((c.period, *c.streams))
+    ]
     horizon = max(10**7, 1000 * max(c.period for c in items))
     policy = executor.policy
     common = None
@@ -161,7 +170,7 @@ def _gantt(executor: Executor) -> tuple[Fraction, tuple[tuple[str, int, Fraction
     timed = [c for c in executor.callbacks if c.period is not None and c.wcet > 0]
     if not timed:
         return Fraction(0), ()
-    base = time_base([t for c in timed for t in (c.period, c.wcet, c.deadline or c.period)])
+    base = time_base([t for c in timed for t in (c.period, c.wcet, c.deadline or c.period, *c.streams)])
     items = _scaled(timed, executor, base)
     span = min(math.lcm(*(c.period for c in items)), 2 * max(c.period for c in items))
     run = simulate_executor(
@@ -184,10 +193,23 @@ def _gantt(executor: Executor) -> tuple[Fraction, tuple[tuple[str, int, Fraction
     )
 
 
-def _with_arrivals(root: Any, executors: Sequence[Executor], mode: Any) -> tuple[Executor, ...]:
-    """Executors whose callbacks without ``Period`` (subscriptions, as ROSMOD's) take the least
-    period of the callbacks that publish to them as minimum inter-arrival time (an
-    event-triggered link releases one job per message)."""
+#: Release streams of a callback: (minimum inter-arrival time in µs, the callbacks whose output
+#: releases it, from the stream's origin to its last writer).
+Streams = tuple[tuple[Fraction, tuple[str, ...]], ...]
+
+#: Rounds of the release-jitter iteration before a still-growing bound is given up.
+_JITTER_ROUNDS = 30
+
+
+def _arrival_streams(root: Any, executors: Sequence[Executor], mode: Any) -> dict[str, Streams]:
+    """The release streams of the callbacks without ``Period`` (subscriptions, as ROSMOD's): every
+    topic connection that feeds a callback adds the streams of its writer (of the fastest one,
+    where any callback of a ROSMOD component may write it), each extended by that writer, so a
+    subscription fed over two topics counts the messages of both — Casini et al., ECRTS 2019,
+    join such inputs as the sum (OR) of their event models — and a message released by a chain
+    of callbacks knows the callbacks whose response times make its release jitter. A callback no
+    topic releases takes, as before, the least period of the callbacks linked to it inside its
+    node; so does a writer met again around a cycle of subscriptions (no jitter)."""
     everything = [c for e in executors for c in e.callbacks]
     periods = {c.path: c.period for c in everything}
     links = callback_links(root, everything, mode)
@@ -200,16 +222,116 @@ def _with_arrivals(root: Any, executors: Sequence[Executor], mode: Any) -> tuple
             if target.period is None and source is not None and (current is None or source < current):
                 periods[target.path] = source
                 changed = True
-    result = []
+    topics: dict[str, dict[int, list[Callback]]] = {}
+    for link in links:
+        if link.connection is not None:
+            feeding = topics.setdefault(link.destination.path, {})
+            feeding.setdefault(id(link.connection), []).append(link.source)
+    known: dict[str, Streams] = {}
+
+    def streams(callback: Callback, visiting: frozenset[str]) -> Streams:
+        if callback.period is not None:
+            return ((callback.period, ()),)
+        if callback.path in known:
+            return known[callback.path]
+        fallback = periods[callback.path]
+        if callback.path in visiting or callback.path not in topics:
+            return ((fallback, ()),) if fallback is not None else ()
+        result: list[tuple[Fraction, tuple[str, ...]]] = []
+        for writers in topics[callback.path].values():
+            options = [
+                tuple((period, (*chain, w.path)) for period, chain in streams(w, visiting | {callback.path}))
+                for w in writers
+            ]
+            options = [o for o in options if o]
+            if options:
+                result.extend(min(options, key=lambda o: (min(p for p, _ in o), -len(o))))
+        if not result and fallback is not None:
+            result.append((fallback, ()))
+        known[callback.path] = tuple(sorted(result))
+        return known[callback.path]
+
+    return {c.path: found for c in everything if c.period is None if (found := streams(c, frozenset()))}
+
+
+def _with_jitter(
+    executors: Sequence[Executor], arrivals: dict[str, Streams], bounds: dict[str, Fraction | None]
+) -> tuple[tuple[Executor, ...], set[str]]:
+    """The executors with the release streams of their subscriptions, each with its release
+    jitter: the sum of the response-time bounds ``bounds`` of the callbacks that release it (the
+    output jitter of a callback is its release jitter plus its response time: the holistic
+    analysis of Tindell & Clark, as pyCPA propagates it in Casini et al.'s artefact); a callback
+    not yet in ``bounds`` adds none. Also the executors a stream of unknown jitter (a writer
+    without bound) leaves without bound."""
+    result, unknown = [], set()
     for executor in executors:
-        callbacks = tuple(
-            replace(c, period=periods[c.path], deadline=c.deadline or periods[c.path])
-            if c.period is None
-            else c
-            for c in executor.callbacks
-        )
-        result.append(replace(executor, callbacks=callbacks))
-    return tuple(result)
+        callbacks = []
+        for c in executor.callbacks:
+            found = arrivals.get(c.path)
+            if found:
+                streams = []
+                for period, chain in found:
+                    jitters = [bounds.get(w, Fraction(0)) for w in chain]
+                    if any(j is None for j in jitters):
+                        unknown.add(executor.path)
+                        jitters = []
+                    streams.append((period, sum(jitters, Fraction(0))))
+                streams.sort()
+                c = replace(
+                    c, period=streams[0][0], deadline=c.deadline or streams[0][0],
+                    streams=tuple(p for p, _ in streams[1:]), jitters=tuple(j for _, j in streams),
+                )  # fmt: skip
+            callbacks.append(c)
+        result.append(replace(executor, callbacks=tuple(callbacks)))
+    return tuple(result), unknown
+
+
+def _all_bounds(
+    executors: Sequence[Executor], unknown: set[str], known: dict[Any, dict[str, Fraction | None]]
+) -> dict[str, Fraction | None]:
+    """Every callback's bound, each executor's computed once for its callbacks and those that
+    preempt it (``known``, kept across the rounds of the jitter iteration)."""
+    bounds: dict[str, Fraction | None] = {}
+    for executor in executors:
+        if executor.path in unknown:
+            bounds.update({c.path: None for c in executor.callbacks})
+            continue
+        interfering = [
+            c
+            for other in executors
+            if other is not executor and other.processor and other.processor == executor.processor
+            if other.priority >= executor.priority
+            for c in other.callbacks
+        ]
+        key = (executor, tuple(interfering))
+        if key not in known:
+            known[key] = executor_bounds(executor, interfering)
+        bounds.update(known[key])
+    return bounds
+
+
+def _settled_bounds(
+    executors: Sequence[Executor], arrivals: dict[str, Streams]
+) -> tuple[dict[str, Fraction | None], set[str], set[str]]:
+    """Every callback's bound with the release jitter of its streams, iterated from no jitter
+    until no bound grows (bounds only grow with jitter); the callbacks of an executor whose
+    bounds still grow after :data:`_JITTER_ROUNDS` rounds get none. Also the executors left
+    without bound that way (unsettled) and by a publisher without bound (unknown)."""
+    bounds: dict[str, Fraction | None] = {}
+    known: dict[Any, dict[str, Fraction | None]] = {}
+    for _ in range(_JITTER_ROUNDS):
+        current, unknown = _with_jitter(executors, arrivals, bounds)
+        found = _all_bounds(current, unknown, known)
+        if found == bounds:
+            return bounds, set(), unknown
+        bounds = found
+    current, unknown = _with_jitter(executors, arrivals, bounds)
+    found = _all_bounds(current, unknown, known)
+    growing = {e.path for e in current for c in e.callbacks if found.get(c.path) != bounds.get(c.path)}
+    for executor in current:
+        if executor.path in growing:
+            found.update({c.path: None for c in executor.callbacks})
+    return found, growing, unknown
 
 
 def _thread_wcrts(root: Any, schedulability: Any) -> dict[str, Fraction]:
@@ -225,24 +347,17 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
     root = instance_root(source)
     mode = system_modes(root)[0]
     diagnostics: list[Diagnostic] = []
-    executors = _with_arrivals(root, executors_from_instance(root, diagnostics, mode), mode)
+    declared = executors_from_instance(root, diagnostics, mode)
+    arrivals = _arrival_streams(root, declared, mode)
+    executors, _ = _with_jitter(declared, arrivals, {})  # the model's periods, for the report
+    bounds, unsettled, unknown = _settled_bounds(declared, arrivals)
     thread_wcrt = _thread_wcrts(root, schedulability)
-    bounds: dict[str, Fraction | None] = {}
     rows = []
     gantt = {}
     for executor in executors:
-        interfering = [
-            c
-            for other in executors
-            if other is not executor and other.processor and other.processor == executor.processor
-            if other.priority >= executor.priority
-            for c in other.callbacks
-        ]
-        found = executor_bounds(executor, interfering)
-        bounds.update(found)
         gantt[executor.path] = _gantt(executor)
         for callback in executor.callbacks:
-            wcrt = found.get(callback.path)
+            wcrt = bounds.get(callback.path)
             if callback.period is None:
                 diagnostics.append(
                     Diagnostic(
@@ -251,6 +366,20 @@ def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 1
                         Location(path=callback.path),
                     )
                 )
+            elif wcrt is None and executor.path in unknown:
+                diagnostics.append(
+                    Diagnostic(
+                        "error", "a callback whose messages release it has no bound: no response-time "
+                        "bound", Location(path=callback.path),
+                    )
+                )  # fmt: skip
+            elif wcrt is None and executor.path in unsettled:
+                diagnostics.append(
+                    Diagnostic(
+                        "error", f"the release jitter of executor {executor.path} does not settle: "
+                        "no response-time bound", Location(path=callback.path),
+                    )
+                )  # fmt: skip
             elif wcrt is None:
                 diagnostics.append(
                     Diagnostic(

@@ -13,7 +13,12 @@ preemptive analysis (their request-bound function is added to every demand below
 Time is discrete (Prosa's model, which ``response-time-analysis`` implements): a job released at
 time ``a`` may start at ``a``, and a job that started before ``a`` blocks a more urgent job for at
 most ``wcet - 1``. :func:`rbf` is the request-bound function, the work of the jobs of a callback
-released in any half-open window of length ``delta``: ``ceil(delta / T) * C``.
+released in any half-open window of length ``delta``: ``ceil(delta / T) * C``, or
+``ceil((delta + J) / T) * C`` for a release jitter ``J`` (a subscription released by a callback
+whose response time varies); a callback with further release ``streams`` (a subscription fed
+over several topics, each publisher releasing it independently) requests the sum over its
+streams, and every ``rbf_j`` below is that sum. The offsets ``A`` searched are then the steps of
+the jittered functions, ``k * T - J``.
 
 Each bound follows the busy-window principle (Bozhko & Brandenburg, ECRTS 2020): a bound ``L`` on
 the busy window, then, for every relevant offset ``A < L`` of the job under analysis in it, the
@@ -55,20 +60,39 @@ class CallbackTiming(NamedTuple):
     deadline: int
     priority: int = 0
     rank: int = 0  #: place in the executor's dispatch order (kind order, then registration)
+    #: minimum inter-arrival times of further independent release streams (a subscription fed
+    #: over several topics: one stream per topic), whose jobs add to those of ``period``
+    streams: tuple[int, ...] = ()
+    #: release jitter of each stream, ``period`` first (missing: 0): a stream of period ``T`` and
+    #: jitter ``J`` releases ``ceil((t + J) / T)`` jobs in a window ``t``
+    jitters: tuple[int, ...] = ()
 
 
-Interference = Sequence[tuple[int, int]]
+#: ``(period, wcet)`` or ``(period, wcet, jitter)`` of each preempting thread or callback
+Interference = Sequence[tuple[int, ...]]
 
 
-def rbf(period: int, wcet: int, delta: int) -> int:
-    """The request-bound function: work of the jobs released in a half-open window of ``delta``."""
+def rbf(period: int, wcet: int, delta: int, jitter: int = 0) -> int:
+    """The request-bound function: work of the jobs released in a half-open window of ``delta``
+    by a stream of minimum inter-arrival time ``period`` and release jitter ``jitter``."""
     if delta <= 0 or wcet <= 0:
         return 0
-    return -(-delta // period) * wcet
+    return -(-(delta + jitter) // period) * wcet
+
+
+def _streams(callback: CallbackTiming) -> list[tuple[int, int]]:
+    """``(period, jitter)`` of each release stream of the callback."""
+    periods = (callback.period, *callback.streams)
+    return [(p, callback.jitters[k] if k < len(callback.jitters) else 0) for k, p in enumerate(periods)]
+
+
+def _requests(callback: CallbackTiming, delta: int) -> int:
+    """The callback's request-bound function: the sum of :func:`rbf` over its release streams."""
+    return sum(rbf(period, callback.wcet, delta, jitter) for period, jitter in _streams(callback))
 
 
 def _preemption(interference: Interference, delta: int) -> int:
-    return sum(rbf(t, c, delta) for t, c in interference)
+    return sum(rbf(t[0], t[1], delta, t[2] if len(t) > 2 else 0) for t in interference)
 
 
 def _fixed_point(rhs: Callable[[int], int], start: int, horizon: int, least: int = 0) -> int | None:
@@ -93,7 +117,7 @@ def busy_window(
     (Casini et al., ECRTS 2019, Lemma 6; the classical level-i busy period)."""
     items = list(callbacks)
     return _fixed_point(
-        lambda x: blocking + sum(rbf(c.period, c.wcet, x) for c in items) + _preemption(interference, x),
+        lambda x: blocking + sum(_requests(c, x) for c in items) + _preemption(interference, x),
         1,
         horizon,
         least=1,
@@ -106,8 +130,8 @@ def _least(*values: int | None) -> int | None:
 
 
 def _offsets(steps: Iterable[tuple[int, int]], limit: int) -> list[int]:
-    """Every ``k * period + shift`` (``k >= 0``) in ``[0, limit)`` for each ``(period, shift)``."""
-    points: set[int] = set()
+    """0 and every ``k * period + shift`` (``k >= 0``) in ``[0, limit)`` for each ``(period, shift)``."""
+    points: set[int] = {0}
     for period, shift in steps:
         k = 0 if shift >= 0 else -(shift // period)
         value = k * period + shift
@@ -150,10 +174,10 @@ def fifo_response_time(
         return None
 
     def released(offset: int) -> int:
-        return sum(rbf(c.period, c.wcet, offset + 1) for c in callbacks)
+        return sum(_requests(c, offset + 1) for c in callbacks)
 
     return _worst_response(
-        _offsets(((c.period, 0) for c in callbacks), window),
+        _offsets(((p, -j) for c in callbacks for p, j in _streams(c)), window),
         lambda offset, x: released(offset) + _preemption(interference, x),
         released,
         horizon,
@@ -189,13 +213,13 @@ def np_fixed_priority_response_time(
         return None
 
     def own(offset: int) -> int:
-        return blocking + rbf(me.period, me.wcet, offset + 1)
+        return blocking + _requests(me, offset + 1)
 
     def demand(offset: int, x: int) -> int:
         start = x - me.wcet + 1
-        return own(offset) + sum(rbf(c.period, c.wcet, start) for c in hep) + _preemption(interference, x)
+        return own(offset) + sum(_requests(c, start) for c in hep) + _preemption(interference, x)
 
-    return _worst_response(_offsets([(me.period, 0)], window), demand, own, horizon)
+    return _worst_response(_offsets([(p, -j) for p, j in _streams(me)], window), demand, own, horizon)
 
 
 def np_edf_response_time(
@@ -210,7 +234,7 @@ def np_edf_response_time(
     George, Rivierre & Spuri (INRIA RR-2966, 1996), the non-preemptive EDF response time, in
     discrete time: for a job of
     ``i`` released at ``A`` (absolute deadline ``A + D_i``) the least ``F`` with
-    ``F >= B(A) + floor(A / T_i) * C_i + C_i + sum_{j != i, D_j <= A + D_i} min(rbf_j(F - C_i + 1),
+    ``F >= B(A) + rbf_i(A + 1) + sum_{j != i, D_j <= A + D_i} min(rbf_j(F - C_i + 1),
     rbf_j(A + D_i - D_j + 1)) + I(F)``, where ``B(A) = max(C_j - 1 | D_j > A + D_i)`` is the
     blocking by one job of later deadline; ``A`` ranges over ``k * T_j + D_j - D_i`` and
     ``k * T_i`` below the busy window ``L = sum rbf(L) + I(L)`` (the processor's, which the
@@ -222,19 +246,18 @@ def np_edf_response_time(
     window = busy_window(callbacks, interference, 0, horizon)
     if window is None:
         return None
-    steps = [(me.period, 0)] + [(c.period, c.deadline - me.deadline) for c in others]
+    steps = [(p, -j) for p, j in _streams(me)]
+    steps += [(p, c.deadline - me.deadline - j) for c in others for p, j in _streams(c)]
 
     def own(offset: int) -> int:
         due = offset + me.deadline
         blocking = max((c.wcet - 1 for c in others if c.deadline > due), default=0)
-        return blocking + (offset // me.period) * me.wcet + me.wcet
+        return blocking + _requests(me, offset + 1)
 
     def demand(offset: int, x: int) -> int:
         due, start = offset + me.deadline, x - me.wcet + 1
         work = sum(
-            min(rbf(c.period, c.wcet, start), rbf(c.period, c.wcet, due - c.deadline + 1))
-            for c in others
-            if c.deadline <= due
+            min(_requests(c, start), _requests(c, due - c.deadline + 1)) for c in others if c.deadline <= due
         )
         return own(offset) + work + _preemption(interference, x)
 
@@ -266,12 +289,17 @@ def polling_response_time(
       only jobs released less than its own bound ``R_j`` (the first bound) before the window
       opens, so at most ``ceil((R + R_j) / T_j)`` of them (the arrival-curve cap of Blaß et al.'s
       round-robin analysis, as the ``ros2::rr`` module of the ``response-time-analysis`` crate
-      implements it); a callback of equal rank counts as ordered before ``i``:
+      implements it, summed over its release streams); a callback of equal rank counts as
+      ordered before ``i``:
       ``R = C_i + sum_{j != i} C_j * min(1 + [rank_j <= rank_i], ceil((R + R_j) / T_j)) + I(R)``.
+
+    A callback of several release streams (whose jobs may arrive together, so one may be pending
+    when the next arrives) keeps the first bound, and so does one whose first bound exceeds its
+    period less its release jitter (the least gap between its jobs).
     """
     me = callbacks[index]
     worst = _casini_bound(callbacks, index, interference, horizon)
-    if worst is None or worst > me.period:
+    if worst is None or me.streams or worst > me.period - sum(me.jitters):
         return worst
     caps = []
     for k, other in enumerate(callbacks):
@@ -283,11 +311,16 @@ def polling_response_time(
         caps.append((other, 2 if other.rank <= me.rank else 1, bound))
 
     def rounds(x: int) -> int:
-        work = sum(c.wcet * min(jobs, -(-(x + lag) // c.period)) for c, jobs, lag in caps)
+        work = sum(c.wcet * min(jobs, _arrivals(c, x + lag)) for c, jobs, lag in caps)
         return me.wcet + work + _preemption(interference, x)
 
     two_rounds = _fixed_point(rounds, me.wcet, horizon)
     return worst if two_rounds is None else min(worst, two_rounds)
+
+
+def _arrivals(callback: CallbackTiming, delta: int) -> int:
+    """Jobs a callback releases in a half-open window of ``delta > 0``."""
+    return sum(-(-(delta + jitter) // period) for period, jitter in _streams(callback))
 
 
 def _casini_bound(

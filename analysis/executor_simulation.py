@@ -65,18 +65,21 @@ def periodic_releases(
     gaps: Sequence[Sequence[int]] | None = None,
 ) -> list[list[int]]:
     """Release times below ``horizon``: from each callback's offset, every period plus the extra
-    delay ``gaps[i][k]`` (cycled) before its ``k``-th next release (sporadic arrivals)."""
+    delay ``gaps[i][k]`` (cycled) before its ``k``-th next release (sporadic arrivals), and every
+    period of each of its further release ``streams`` from the same offset."""
     out = []
     for i, cb in enumerate(callbacks):
-        time = offsets[i] if offsets else 0
+        start = offsets[i] if offsets else 0
         extra = gaps[i] if gaps and gaps[i] else [0]
         times = []
-        k = 0
+        time, k = start, 0
         while time < horizon:
             times.append(time)
             time += cb.period + extra[k % len(extra)]
             k += 1
-        out.append(times)
+        for period in cb.streams:
+            times.extend(range(start, horizon, period))
+        out.append(sorted(times))
     return out
 
 

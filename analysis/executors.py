@@ -80,6 +80,12 @@ class Callback:
     order: int  #: registration order inside its executor (model order)
     periodic: bool
     thread: Any = None
+    #: minimum inter-arrival times (µs) of further release streams: a subscription fed over
+    #: several topics is released by each of them (``executor_analysis`` sets them)
+    streams: tuple[Fraction, ...] = ()
+    #: release jitter (µs) of each stream, ``period`` first (the response times of the callbacks
+    #: whose messages release it; ``executor_analysis`` sets them)
+    jitters: tuple[Fraction, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -84,7 +84,7 @@ def test_simulated_response_never_exceeds_the_bound(run):
     """Every executor model on the same generated sets: the simulated worst response of each
     callback never exceeds its bound, and a set of utilisation below 1 always has a bound."""
     items, releases, executions, threads, quantum, groups = run
-    underloaded = sum(c.wcet / c.period for c in items) < 1
+    underloaded = sum(c.wcet / period for c in items for period in (c.period, *c.streams)) < 1
     for policy in POLICIES:
         result = simulate_executor(
             items, policy, releases, executions=executions, threads=threads, groups=groups, quantum=quantum
@@ -95,6 +95,40 @@ def test_simulated_response_never_exceeds_the_bound(run):
                 assert worst <= bound, (policy, items, index)
             if underloaded:
                 assert bound is not None, (policy, items, index)
+
+
+@st.composite
+def runs_with_streams(draw):
+    """As :func:`runs`, with callbacks released by one to three independent streams (a
+    subscription fed over several topics), each with its own phase, sporadic gaps and release
+    jitter (each job released up to ``J`` after its nominal time)."""
+    items = draw(callback_sets(most=4))
+    rng = draw(st.randoms(use_true_random=False))
+    for k, c in enumerate(items):
+        streams = tuple(rng.randint(4, 40) for _ in range(rng.choice((0, 1, 1, 2))))
+        jitters = tuple(rng.choice((0, 0, rng.randint(0, 2 * p))) for p in (c.period, *streams))
+        items[k] = c._replace(streams=streams, jitters=jitters)
+    span = 400 + max(c.period for c in items)
+    releases = []
+    for c in items:
+        times = []
+        for period, jitter in zip((c.period, *c.streams), c.jitters, strict=True):
+            nominal = rng.randint(0, period)
+            while nominal < span:
+                times.append(nominal + rng.choice((0, jitter, rng.randint(0, jitter))))
+                nominal += period + rng.choice((0, 0, 1, 3))
+        releases.append(sorted(times))
+    executions = [[rng.randint(1, c.wcet) for _ in range(rng.randint(1, 3))] for c in items]
+    groups = [rng.choice(("a", "b", None)) for _ in items]
+    return items, releases, executions, rng.randint(1, 3), rng.randint(1, 6), groups
+
+
+@settings(max_examples=EXAMPLES // 8, deadline=None, derandomize=True, database=None)
+@given(runs_with_streams())
+def test_callbacks_of_several_release_streams_stay_within_the_bound(run):
+    """A callback released by several independent streams with release jitter requests their
+    sum: under every executor model the simulated worst response never exceeds the bound."""
+    test_simulated_response_never_exceeds_the_bound.hypothesis.inner_test(run)
 
 
 def _prosa(items):

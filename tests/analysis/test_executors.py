@@ -148,3 +148,82 @@ def test_an_end_to_end_flow_is_a_chain_with_its_latency_as_deadline():
     assert chains["e2e"].met is False
     assert any("exceeds its Latency 12000 us" in d.message for d in result.diagnostics)
     assert chains["n1.a -> n2.b"].reaction_time == 17_000
+
+
+def test_a_subscription_fed_by_two_topics_counts_a_message_of_each():
+    """Two timers (T = 100 ms, C = 1 ms) of a lower-priority node publish on two connections to
+    one subscription (C = 10 ms, no Period) alone in its node: one message of each can arrive
+    within 1 ms, and the executor runs them one after the other, so the second completes up to
+    20 ms after the first arrived (19 ms after its own arrival). Its arrivals are the two
+    publishers' streams together (Casini et al., ECRTS 2019: the move_base case study's
+    sensor2mem, fed by /scan and /tF, an OR-join of the two event models), not the faster one's
+    period alone, which would claim 10 ms."""
+    root = system(
+        component("pubs", "process", callback("a1", 100_000, 1_000, kind="Timer"),
+                  callback("a2", 100_000, 1_000, kind="Timer")),
+        component("node", "process", callback("s", None, 10_000, kind="Subscriber", dispatch="Sporadic"),
+                  props=[pa("Thread_Properties::Priority", new("IntegerValue", value=5)),
+                         pa("ROS_Properties::Executor_Kind", enum("Single_Threaded"))]),
+    )  # fmt: skip
+    pubs, node = root.componentInstances[1:]
+    inp = new("FeatureInstance", name="i", feature="i", category="event data port", direction="in")
+    node.componentInstances[0].featureInstances.append(inp)
+    for publisher in pubs.componentInstances:
+        out = new("FeatureInstance", name="o", feature="o", category="event data port", direction="out")
+        publisher.featureInstances.append(out)
+        root.connectionInstances.append(
+            new("ConnectionInstance", name=f"{publisher.name}.o -> s.i", kind="portConnection",
+                source=out, destination=inp)
+        )  # fmt: skip
+    assert wcrts(analyze_executors(root))["s"] == 20_000
+
+
+def two_nodes(publishers, writer, subscriber, props=()):
+    """Node ``pub`` (``publishers``) on cpu0 and node ``sub`` (``subscriber``) on cpu1, each with
+    ``props``; ``writer`` publishes to ``subscriber`` over one connection."""
+    cpus = [component(f"cpu{k}", "processor") for k in range(2)]
+    pub = component("pub", "process", *publishers, props=list(props))
+    sub = component("sub", "process", subscriber, props=list(props))
+    root = new("SystemInstance", name="app_i_Instance", category="system")
+    root.componentInstances.extend([*cpus, pub, sub])
+    binding = "Deployment_Properties::Actual_Processor_Binding"
+    for thread in publishers:
+        thread.ownedPropertyAssociations.append(pa(binding, ref(cpus[0])))
+    subscriber.ownedPropertyAssociations.append(pa(binding, ref(cpus[1])))
+    out = new("FeatureInstance", name="o", feature="o", category="event data port", direction="out")
+    inp = new("FeatureInstance", name="i", feature="i", category="event data port", direction="in")
+    writer.featureInstances.append(out)
+    subscriber.featureInstances.append(inp)
+    name = f"pub.{writer.name}.o -> sub.{subscriber.name}.i"
+    root.connectionInstances.append(
+        new("ConnectionInstance", name=name, kind="portConnection", source=out, destination=inp)
+    )
+    return root
+
+
+def test_a_subscription_counts_the_release_jitter_its_publisher_passes_on():
+    """Timer p (T = 100 ms, C = 1 ms) shares its node with timer q (C = 60 ms, registered
+    before it), so p publishes between 1 and 61 ms after its release; subscription s (C = 50 ms,
+    no Period) alone in a node on another core gets p's messages as little as 39 ms apart (at
+    61, then 101): a message can wait for the previous one. Its release jitter is p's bound, 61
+    (Tindell & Clark's holistic analysis; pyCPA propagates it so in Casini et al.'s artefact):
+    ``rbf_s(t) = ceil((t + 61) / 100) * 50`` gives 61 for the job released at 39 behind the one
+    at 0, where the publisher's period alone claims 50. The chain p -> s: 100 + 61 + 61."""
+    q = callback("q", 100_000, 60_000, kind="Timer")
+    p = callback("p", 100_000, 1_000, kind="Timer")
+    s = callback("s", None, 50_000, kind="Subscriber", dispatch="Sporadic")
+    single = pa("ROS_Properties::Executor_Kind", enum("Single_Threaded"))
+    result = analyze_executors(two_nodes([q, p], p, s, [single]))
+    assert wcrts(result) == {"q": 61_000, "p": 61_000, "s": 61_000}
+    assert {c.name: c.reaction_time for c in result.chains}["pub.p -> sub.s"] == 100_000 + 61_000 + 61_000
+
+
+def test_a_subscription_of_a_publisher_without_bound_has_none_and_says_why():
+    """The publisher's executor is overloaded (two callbacks of 6 ms every 10 ms): the release
+    jitter of its subscriber on another core is unknown, so the subscriber has no bound either."""
+    a, b = callback("a", 10_000, 6_000, kind="Timer"), callback("b", 10_000, 6_000, kind="Timer")
+    s = callback("s", None, 1_000, kind="Subscriber", dispatch="Sporadic")
+    result = analyze_executors(two_nodes([a, b], a, s))
+    assert wcrts(result) == {"a": None, "b": None, "s": None}
+    (why,) = [d for d in result.diagnostics if d.location.path.endswith(".s")]
+    assert why.severity == "error" and "whose messages release it has no bound" in why.message
