@@ -64,6 +64,14 @@ class ComparedItem:
             return None
         return (self.measured - self.predicted) / self.predicted * 100
 
+    @property
+    def pessimism(self) -> float | None:
+        """bound ÷ measured of an upper bound (how far the worst case the analysis claims lies
+        above the worst seen); None for an estimate or a lower bound."""
+        if self.bound is None or self.measured <= 0 or self.quantity.endswith("_min_us"):
+            return None
+        return self.bound / self.measured
+
     def as_dict(self) -> dict[str, Any]:
         error = self.error_percent
         return {
@@ -100,6 +108,7 @@ class ComparisonResult:
     diagnostics: tuple[Diagnostic, ...]
     source: str | None = None
     instance: str = ""  #: the root instance's name (left out of the text's paths)
+    period_scale: float = 1.0  #: the run's period scale (the model compared is scaled by it)
 
     @property
     def ok(self) -> bool:
@@ -119,6 +128,12 @@ class ComparisonResult:
         out: dict[str, Any] = {"items": [i.as_dict() for i in self.items]}
         if self.source:
             out["measurements"] = self.source
+        out["period_scale"] = self.period_scale
+        out["pessimism"] = [
+            {"path": i.path, "quantity": i.quantity, "ratio": _rounded(i.pessimism)}
+            for i in self.items
+            if i.pessimism is not None
+        ]
         return out
 
 
@@ -317,6 +332,31 @@ class _Comparison:
             else:
                 self.add(chain.name, f"latency_{chain.mode}_us", chain.worst_us, measured.latency_us.max)
 
+    def executor(self) -> None:
+        """The executor analysis's bounds: each callback's response time (release to end) and
+        each chain's data age (the measured chain: publish time on its first topic to receipt on
+        its last, a part of the chain's span, so never more than its data age)."""
+        result = self.context.result("executor")
+        if result is None:
+            return
+        for callback in result.callbacks:
+            measured = self.thread(callback.path)
+            if measured is None or measured.response_time_us is None or callback.wcrt is None:
+                continue
+            bound = callback.wcrt
+            self.add(callback.path, "executor_response_time_us", bound, measured.response_time_us.max, bound)
+        for chain in result.chains:
+            found = [
+                (key, c)
+                for key, c in self.chains.items()
+                if key == chain.name or key.endswith("." + chain.name)
+            ]
+            if len(found) != 1 or found[0][1].latency_us is None or chain.data_age is None:
+                continue
+            key, measured = found[0]
+            self.used.add(("chain", key))
+            self.add(key, "data_age_us", chain.data_age, measured.latency_us.max, chain.data_age)
+
     def unmatched(self) -> None:
         for kind, table_ in (
             ("thread", self.threads),
@@ -348,9 +388,14 @@ def compare_measurements(context: AnalysisContext, measurements: Any) -> Compari
     comparison.bandwidth()
     comparison.response_times()
     comparison.latency()
+    comparison.executor()
     comparison.unmatched()
     return ComparisonResult(
-        tuple(comparison.items), tuple(comparison.diagnostics), measurements.source, comparison.name
+        tuple(comparison.items),
+        tuple(comparison.diagnostics),
+        measurements.source,
+        comparison.name,
+        float(getattr(measurements, "period_scale", 1.0)),
     )
 
 
@@ -369,8 +414,12 @@ def _run(context: AnalysisContext) -> ComparisonResult:
 def compare_text(result: ComparisonResult) -> list[str]:
     """The comparison as a text table (error in %; a violated bound marked)."""
     lines = ["Predicted vs measured" + (f" ({result.source})" if result.source else "")]
-    rows = [[_below_root(i.path, result.instance), *i.cells()[1:]] for i in result.items]
-    lines += table(("path", "quantity", "predicted", "measured", "error %", "bound", "violated"), rows)
+    if result.period_scale != 1:
+        lines.append(f"the model with its periods × {result.period_scale:g}, as the run scaled them")
+    rows = [[_below_root(i.path, result.instance), *i.cells()[1:], i.pessimism] for i in result.items]
+    lines += table(
+        ("path", "quantity", "predicted", "measured", "error %", "bound", "violated", "bound/measured"), rows
+    )
     middleware = [i for i in result.items if i.quantity == "middleware_cpu_load_percent"]
     if middleware:
         lines.append(
