@@ -250,10 +250,14 @@ def measurements_document(
     chains: Iterable[ChainPlan],
     run: dict[str, Any],
     root: str | None = None,
+    profiles: dict[str, tuple[str, str]] | None = None,
 ) -> dict[str, Any]:
     """The ``measurements.json`` document of a run: ``nodes`` are the plan's
     :class:`~rosaadl.workflow.run.plan.NodeLaunch` (full name, process path, parameters),
-    ``cpu_load`` and ``cores`` by node full name, ``topics`` the run's topic results."""
+    ``cpu_load``, ``cores`` and ``profiles`` (the board and core a profile of the process is
+    named after, :mod:`~rosaadl.workflow.run.profiles`) by node full name, ``topics`` the run's
+    topic results. ``run.board`` and ``run.core`` are set when every process has the same."""
+    profiles = profiles or {}
     threads, processes, ports = [], [], {}
     for node in nodes:
         trace = traces.get(node.full_name)
@@ -265,6 +269,9 @@ def measurements_document(
                 "cpu_load_percent": round(cpu_load[node.full_name], 4),
                 "core": cores.get(node.full_name),
             }
+            if node.full_name in profiles:
+                board, core = profiles[node.full_name]
+                row["profile"] = {"board": board, "core": core}
             processes.append(row)
         if trace is None:
             continue
@@ -300,6 +307,10 @@ def measurements_document(
                 "latency_us": _stats(latencies),
             }
         )
+    named = {tuple(p["profile"].values()) for p in processes if "profile" in p}
+    if len(named) == 1 and all("profile" in p for p in processes):
+        board, core = named.pop()
+        run = {**run, "board": board, "core": core}
     document: dict[str, Any] = {"format": "rosaadl-measurements", "version": 2}
     if root:
         document["model"] = {"root": root}

@@ -22,6 +22,7 @@ from rosaadl.workflow.run.measure import (
     read_traces,
     thread_cpu_ns,
 )
+from rosaadl.workflow.run.profiles import run_profile
 
 __all__ = ["MeasuredWindow"]
 
@@ -101,6 +102,7 @@ class MeasuredWindow:
                 "period_scale": float(getattr(result, "period_scale", 1.0)),
             },
             root=options.root,
+            profiles={n.full_name: run_profile(n.profile, emulate=options.emulate) for n in plan.nodes},
         )
         text = json.dumps(document, indent=2) + "\n"
         target = self.folder / MEASUREMENTS_FILE
