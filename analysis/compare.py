@@ -15,6 +15,14 @@ measured (``measurements.json``, :mod:`rosaadl.importers.measurements`), with th
 * per processor or core: ``cpu_load_percent`` (its threads' utilisation vs the measured load of
   what is bound to it);
 * per out port with a measured topic: ``bandwidth_kbps`` (``Data_Size`` × rate, KB/s);
+* per bus and virtual bus: ``bus_bandwidth_kbps``, the bus-load analysis's actual load (with the
+  buses' overhead; a virtual bus bound to no bus, which that analysis does not report: the
+  ``Data_Size`` × rate of the ports whose connections are bound to it) vs the measured bandwidth
+  of the topics whose connections are bound to it (bound through a virtual bus included). A run on
+  one machine has these topics cross processes on the loopback (or shared memory): what their
+  subscribers receive per second is what the deployment puts on the bus, less the bus protocol's
+  overhead. A bus none of whose connections carries a topic of the run (a device's stream) is
+  not compared (a warning says so);
 * per thread with a response time bound (the schedulability analysis's worst case):
   ``response_time_us``, bound = the worst case, measured = the maximum;
 * per end-to-end flow: ``latency_us`` (bound = the worst case, measured = the maximum) and
@@ -38,6 +46,7 @@ from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, table
 from rosaadl.errors import AnalysisError, Diagnostic, Location, RosaadlError
 from rosaadl.model import find_instance, instance_path
+from rosaadl.properties import property_value
 from rosaadl.units import standard_units
 
 __all__ = ["ComparedItem", "ComparisonResult", "compare_measurements", "compare_text", "compare_csv"]
@@ -295,6 +304,65 @@ class _Comparison:
             self.used.add(("topic", _below_root(port.path, self.name)))
             self.add(port.path, "bandwidth_kbps", port.kbytesps, topic.bandwidth_bytes_per_s / 1000)
 
+    def bus_totals(self) -> None:
+        """Per bus and virtual bus: the bus-load analysis's actual load (KB/s) beside the
+        measured bandwidth of the topics whose connections are bound to it (see the module
+        docstring)."""
+        result = self.context.result("bus")
+        if result is None:
+            return
+        sources: dict[str, set[str]] = {}
+        for component in _components(self.root):
+            for connection in component.connectionInstances:
+                for target in property_value(connection, "Actual_Connection_Binding") or []:
+                    if target is not None and connection.source is not None:
+                        key = _below_root(instance_path(target), self.name)
+                        sources.setdefault(key, set()).add(
+                            _below_root(instance_path(connection.source), self.name)
+                        )
+        ports = {_below_root(p.path, self.name): p.kbytesps for p in result.ports}
+        reported: set[str] = set()
+
+        def carried(bus: Any) -> set[str]:
+            found = set(sources.get(_below_root(bus.path, self.name), ()))
+            for virtual in bus.virtual_buses:
+                found |= carried(virtual)
+            return found
+
+        def compare(path: str, predicted: Any, carried_by: set[str]) -> None:
+            measured = [
+                self.topics[s].bandwidth_bytes_per_s / 1000 for s in sorted(carried_by) if s in self.topics
+            ]
+            if measured:
+                self.add(path, "bus_bandwidth_kbps", predicted, sum(measured))
+            else:
+                self.diagnostics.append(
+                    Diagnostic(
+                        "warning",
+                        "bus load not compared: none of the connections bound to it carries a topic of the "
+                        "run (they start at devices or at ports no node publishes on)",
+                        Location(path=path),
+                    )
+                )
+
+        def walk(bus: Any) -> None:
+            reported.add(_below_root(bus.path, self.name))
+            compare(bus.path, bus.actual_kbps, carried(bus))
+            for virtual in bus.virtual_buses:
+                walk(virtual)
+
+        for bus in result.modes[0].buses if result.modes else ():
+            walk(bus)
+        for key in sorted(set(sources) - reported):  # a virtual bus bound to no bus: its ports' loads
+            try:
+                target = find_instance(self.root, key)
+            except RosaadlError:
+                continue
+            if target is None or category_of(target) != "virtualBus":
+                continue
+            predicted = sum((ports.get(s, Fraction(0)) for s in sources[key]), Fraction(0))
+            compare(instance_path(target), predicted, sources[key])
+
     def response_times(self) -> None:
         result = self.context.result("sched")
         if result is None:
@@ -375,6 +443,14 @@ class _Comparison:
                     )
 
 
+def _components(root: Any):
+    stack = [root]
+    while stack:
+        current = stack.pop()
+        yield current
+        stack.extend(reversed(list(current.componentInstances)))
+
+
 def _first_mode(result: Any, processor: Any) -> Any:
     """The row of ``processor``'s path in the first system mode (a run has one mode)."""
     return next(p for p in result.processors if p.path == processor.path)
@@ -386,6 +462,7 @@ def compare_measurements(context: AnalysisContext, measurements: Any) -> Compari
     comparison = _Comparison(context, measurements)
     comparison.cpu()
     comparison.bandwidth()
+    comparison.bus_totals()
     comparison.response_times()
     comparison.latency()
     comparison.executor()

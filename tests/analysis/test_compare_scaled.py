@@ -105,3 +105,17 @@ def test_the_text_names_the_scale_and_the_pessimism(tmp_path, capsys) -> None:
     text = capsys.readouterr().out
     assert "the model with its periods × 1.9, as the run scaled them" in text
     assert "bound/measured" in text
+
+
+def test_each_bus_s_total_is_the_measured_bandwidth_of_the_topics_bound_to_it(tmp_path, capsys) -> None:
+    document = _compare(tmp_path, capsys, 1.0)
+    ros_bus = _item(document, "ROSbus", "bus_bandwidth_kbps")
+    # the image and point ports bound to the ROS virtual bus (bound to no physical bus, so their
+    # Data_Size × rate); the sample measured the image topic only
+    assert ros_bus["predicted"] == pytest.approx(27630.28 + 0.24, abs=0.01)
+    assert ros_bus["measured"] == pytest.approx(27648.0)
+    # the USB bus carries the camera device's stream, which no topic of the run carries
+    assert not [i for i in document["analyses"]["compare"]["items"] if i["path"].endswith("usb_bus")]
+    assert any(
+        w["path"].endswith("p3DX.usb_bus") and "not compared" in w["message"] for w in document["warnings"]
+    )
