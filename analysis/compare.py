@@ -45,7 +45,7 @@ from rosaadl.analysis.instance_values import category_of
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, table
 from rosaadl.errors import AnalysisError, Diagnostic, Location, RosaadlError
-from rosaadl.model import find_instance, instance_path
+from rosaadl.model import component_instances, find_instance, instance_path
 from rosaadl.properties import property_value
 from rosaadl.units import standard_units
 
@@ -312,7 +312,7 @@ class _Comparison:
         if result is None:
             return
         sources: dict[str, set[str]] = {}
-        for component in _components(self.root):
+        for component in component_instances(self.root):
             for connection in component.connectionInstances:
                 for target in property_value(connection, "Actual_Connection_Binding") or []:
                     if target is not None and connection.source is not None:
@@ -441,14 +441,6 @@ class _Comparison:
                             Location(path=key),
                         )
                     )
-
-
-def _components(root: Any):
-    stack = [root]
-    while stack:
-        current = stack.pop()
-        yield current
-        stack.extend(reversed(list(current.componentInstances)))
 
 
 def _first_mode(result: Any, processor: Any) -> Any:

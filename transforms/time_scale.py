@@ -22,6 +22,7 @@ from fractions import Fraction
 from pyecore.ecore import EObject
 
 from rosaadl.errors import ModelError
+from rosaadl.model import component_instances
 from rosaadl.properties import property_name_matches
 from rosaadl.units import standard_units
 
@@ -56,14 +57,6 @@ def _scaled(value: EObject, factor: Fraction) -> bool:
     return True
 
 
-def _components(root: EObject):
-    stack = [root]
-    while stack:
-        current = stack.pop()
-        yield current
-        stack.extend(reversed(list(current.componentInstances)))
-
-
 def scale_periods(root: EObject, factor: float | int | str | Fraction) -> int:
     """Multiply every ``Period`` and ``Deadline`` below the system instance ``root`` by
     ``factor``, in place (see the module docstring); the number of values scaled. A factor of 1
@@ -72,7 +65,7 @@ def scale_periods(root: EObject, factor: float | int | str | Fraction) -> int:
     if factor == 1:
         return 0
     count = 0
-    for component in _components(root):
+    for component in component_instances(root):
         for association in component.ownedPropertyAssociations:
             if not any(property_name_matches(association.property or "", name) for name in SCALED_PROPERTIES):
                 continue
