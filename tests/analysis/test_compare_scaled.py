@@ -3,6 +3,8 @@ the measured callbacks and chains (with their pessimism, bound ÷ measured)."""
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 from pathlib import Path
 
@@ -27,22 +29,30 @@ def _scaled_run(tmp_path, scale: float) -> Path:
     return target
 
 
-def _compare(tmp_path, capsys, scale: float) -> dict:
-    code = main(
-        [
-            "--format",
-            "json",
-            "analyze",
-            str(SYSTEMS),
-            "--root",
-            ROOT,
-            "--compare",
-            str(_scaled_run(tmp_path, scale)),
-        ]
-    )
-    document = json.loads(capsys.readouterr().out)
+def _compare(folder: Path, scale: float) -> dict:
+    output = io.StringIO()
+    with contextlib.redirect_stdout(output):
+        code = main(
+            [
+                "--format",
+                "json",
+                "analyze",
+                str(SYSTEMS),
+                "--root",
+                ROOT,
+                "--compare",
+                str(_scaled_run(folder, scale)),
+            ]
+        )
+    document = json.loads(output.getvalue())
     document["code"] = code
     return document
+
+
+@pytest.fixture(scope="module")
+def scaled(tmp_path_factory) -> dict:
+    """The comparison of a run at period scale 1.9 (analysed once for the module)."""
+    return _compare(tmp_path_factory.mktemp("scaled"), 1.9)
 
 
 def _item(document: dict, path: str, quantity: str) -> dict:
@@ -53,8 +63,8 @@ def _item(document: dict, path: str, quantity: str) -> dict:
     )
 
 
-def test_a_scaled_run_is_compared_with_the_scaled_model(tmp_path, capsys) -> None:
-    document = _compare(tmp_path, capsys, 1.9)
+def test_a_scaled_run_is_compared_with_the_scaled_model(scaled) -> None:
+    document = scaled
     assert document["analyses"]["compare"]["period_scale"] == 1.9
     usbcam = _item(document, "rem_trk_sw.usbcam.image_broadcaster", "cpu_load_percent")
     assert usbcam["predicted"] == pytest.approx(2319 / (33333 * 1.9) * 100, rel=1e-6)
@@ -68,13 +78,17 @@ def test_a_scaled_run_is_compared_with_the_scaled_model(tmp_path, capsys) -> Non
     assert bandwidth["predicted"] == pytest.approx(27630.28 / 1.9, rel=1e-4)
 
 
-def test_an_unscaled_run_is_compared_with_the_model_as_it_is(tmp_path, capsys) -> None:
-    document = _compare(tmp_path, capsys, 1.0)
-    assert _item(document, "rem_trk_sw.etef_tracking", "latency_us")["bound"] == 139319
+@pytest.fixture(scope="module")
+def unscaled(tmp_path_factory) -> dict:
+    return _compare(tmp_path_factory.mktemp("unscaled"), 1.0)
 
 
-def test_executor_bounds_are_held_to_the_callbacks_and_chains_with_their_pessimism(tmp_path, capsys) -> None:
-    document = _compare(tmp_path, capsys, 1.9)
+def test_an_unscaled_run_is_compared_with_the_model_as_it_is(unscaled) -> None:
+    assert _item(unscaled, "rem_trk_sw.etef_tracking", "latency_us")["bound"] == 139319
+
+
+def test_executor_bounds_are_held_to_the_callbacks_and_chains_with_their_pessimism(scaled) -> None:
+    document = scaled
     compare = document["analyses"]["compare"]
     broadcaster = _item(document, "rem_trk_sw.usbcam.image_broadcaster", "executor_response_time_us")
     # the executor analysis's WCRT of the camera's timer callback, alone in its node: its CET
@@ -107,8 +121,8 @@ def test_the_text_names_the_scale_and_the_pessimism(tmp_path, capsys) -> None:
     assert "bound/measured" in text
 
 
-def test_each_bus_s_total_is_the_measured_bandwidth_of_the_topics_bound_to_it(tmp_path, capsys) -> None:
-    document = _compare(tmp_path, capsys, 1.0)
+def test_each_bus_s_total_is_the_measured_bandwidth_of_the_topics_bound_to_it(unscaled) -> None:
+    document = unscaled
     ros_bus = _item(document, "ROSbus", "bus_bandwidth_kbps")
     # the image and point ports bound to the ROS virtual bus (bound to no physical bus, so their
     # Data_Size × rate); the sample measured the image topic only
