@@ -15,6 +15,14 @@ measured (``measurements.json``, :mod:`rosaadl.importers.measurements`), with th
 * per processor or core: ``cpu_load_percent`` (its threads' utilisation vs the measured load of
   what is bound to it);
 * per out port with a measured topic: ``bandwidth_kbps`` (``Data_Size`` × rate, KB/s);
+* per bus and virtual bus: ``bus_bandwidth_kbps``, the bus-load analysis's actual load (with the
+  buses' overhead; a virtual bus bound to no bus, which that analysis does not report: the
+  ``Data_Size`` × rate of the ports whose connections are bound to it) vs the measured bandwidth
+  of the topics whose connections are bound to it (bound through a virtual bus included). A run on
+  one machine has these topics cross processes on the loopback (or shared memory): what their
+  subscribers receive per second is what the deployment puts on the bus, less the bus protocol's
+  overhead. A bus none of whose connections carries a topic of the run (a device's stream) is
+  not compared (a warning says so);
 * per thread with a response time bound (the schedulability analysis's worst case):
   ``response_time_us``, bound = the worst case, measured = the maximum;
 * per end-to-end flow: ``latency_us`` (bound = the worst case, measured = the maximum) and
@@ -37,7 +45,8 @@ from rosaadl.analysis.instance_values import category_of
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, table
 from rosaadl.errors import AnalysisError, Diagnostic, Location, RosaadlError
-from rosaadl.model import find_instance, instance_path
+from rosaadl.model import component_instances, find_instance, instance_path
+from rosaadl.properties import property_value
 from rosaadl.units import standard_units
 
 __all__ = ["ComparedItem", "ComparisonResult", "compare_measurements", "compare_text", "compare_csv"]
@@ -63,6 +72,14 @@ class ComparedItem:
         if not self.predicted:
             return None
         return (self.measured - self.predicted) / self.predicted * 100
+
+    @property
+    def pessimism(self) -> float | None:
+        """bound ÷ measured of an upper bound (how far the worst case the analysis claims lies
+        above the worst seen); None for an estimate or a lower bound."""
+        if self.bound is None or self.measured <= 0 or self.quantity.endswith("_min_us"):
+            return None
+        return self.bound / self.measured
 
     def as_dict(self) -> dict[str, Any]:
         error = self.error_percent
@@ -100,6 +117,7 @@ class ComparisonResult:
     diagnostics: tuple[Diagnostic, ...]
     source: str | None = None
     instance: str = ""  #: the root instance's name (left out of the text's paths)
+    period_scale: float = 1.0  #: the run's period scale (the model compared is scaled by it)
 
     @property
     def ok(self) -> bool:
@@ -119,6 +137,12 @@ class ComparisonResult:
         out: dict[str, Any] = {"items": [i.as_dict() for i in self.items]}
         if self.source:
             out["measurements"] = self.source
+        out["period_scale"] = self.period_scale
+        out["pessimism"] = [
+            {"path": i.path, "quantity": i.quantity, "ratio": _rounded(i.pessimism)}
+            for i in self.items
+            if i.pessimism is not None
+        ]
         return out
 
 
@@ -280,6 +304,65 @@ class _Comparison:
             self.used.add(("topic", _below_root(port.path, self.name)))
             self.add(port.path, "bandwidth_kbps", port.kbytesps, topic.bandwidth_bytes_per_s / 1000)
 
+    def bus_totals(self) -> None:
+        """Per bus and virtual bus: the bus-load analysis's actual load (KB/s) beside the
+        measured bandwidth of the topics whose connections are bound to it (see the module
+        docstring)."""
+        result = self.context.result("bus")
+        if result is None:
+            return
+        sources: dict[str, set[str]] = {}
+        for component in component_instances(self.root):
+            for connection in component.connectionInstances:
+                for target in property_value(connection, "Actual_Connection_Binding") or []:
+                    if target is not None and connection.source is not None:
+                        key = _below_root(instance_path(target), self.name)
+                        sources.setdefault(key, set()).add(
+                            _below_root(instance_path(connection.source), self.name)
+                        )
+        ports = {_below_root(p.path, self.name): p.kbytesps for p in result.ports}
+        reported: set[str] = set()
+
+        def carried(bus: Any) -> set[str]:
+            found = set(sources.get(_below_root(bus.path, self.name), ()))
+            for virtual in bus.virtual_buses:
+                found |= carried(virtual)
+            return found
+
+        def compare(path: str, predicted: Any, carried_by: set[str]) -> None:
+            measured = [
+                self.topics[s].bandwidth_bytes_per_s / 1000 for s in sorted(carried_by) if s in self.topics
+            ]
+            if measured:
+                self.add(path, "bus_bandwidth_kbps", predicted, sum(measured))
+            else:
+                self.diagnostics.append(
+                    Diagnostic(
+                        "warning",
+                        "bus load not compared: none of the connections bound to it carries a topic of the "
+                        "run (they start at devices or at ports no node publishes on)",
+                        Location(path=path),
+                    )
+                )
+
+        def walk(bus: Any) -> None:
+            reported.add(_below_root(bus.path, self.name))
+            compare(bus.path, bus.actual_kbps, carried(bus))
+            for virtual in bus.virtual_buses:
+                walk(virtual)
+
+        for bus in result.modes[0].buses if result.modes else ():
+            walk(bus)
+        for key in sorted(set(sources) - reported):  # a virtual bus bound to no bus: its ports' loads
+            try:
+                target = find_instance(self.root, key)
+            except RosaadlError:
+                continue
+            if target is None or category_of(target) != "virtualBus":
+                continue
+            predicted = sum((ports.get(s, Fraction(0)) for s in sources[key]), Fraction(0))
+            compare(instance_path(target), predicted, sources[key])
+
     def response_times(self) -> None:
         result = self.context.result("sched")
         if result is None:
@@ -317,6 +400,31 @@ class _Comparison:
             else:
                 self.add(chain.name, f"latency_{chain.mode}_us", chain.worst_us, measured.latency_us.max)
 
+    def executor(self) -> None:
+        """The executor analysis's bounds: each callback's response time (release to end) and
+        each chain's data age (the measured chain: publish time on its first topic to receipt on
+        its last, a part of the chain's span, so never more than its data age)."""
+        result = self.context.result("executor")
+        if result is None:
+            return
+        for callback in result.callbacks:
+            measured = self.thread(callback.path)
+            if measured is None or measured.response_time_us is None or callback.wcrt is None:
+                continue
+            bound = callback.wcrt
+            self.add(callback.path, "executor_response_time_us", bound, measured.response_time_us.max, bound)
+        for chain in result.chains:
+            found = [
+                (key, c)
+                for key, c in self.chains.items()
+                if key == chain.name or key.endswith("." + chain.name)
+            ]
+            if len(found) != 1 or found[0][1].latency_us is None or chain.data_age is None:
+                continue
+            key, measured = found[0]
+            self.used.add(("chain", key))
+            self.add(key, "data_age_us", chain.data_age, measured.latency_us.max, chain.data_age)
+
     def unmatched(self) -> None:
         for kind, table_ in (
             ("thread", self.threads),
@@ -346,11 +454,17 @@ def compare_measurements(context: AnalysisContext, measurements: Any) -> Compari
     comparison = _Comparison(context, measurements)
     comparison.cpu()
     comparison.bandwidth()
+    comparison.bus_totals()
     comparison.response_times()
     comparison.latency()
+    comparison.executor()
     comparison.unmatched()
     return ComparisonResult(
-        tuple(comparison.items), tuple(comparison.diagnostics), measurements.source, comparison.name
+        tuple(comparison.items),
+        tuple(comparison.diagnostics),
+        measurements.source,
+        comparison.name,
+        float(getattr(measurements, "period_scale", 1.0)),
     )
 
 
@@ -369,8 +483,12 @@ def _run(context: AnalysisContext) -> ComparisonResult:
 def compare_text(result: ComparisonResult) -> list[str]:
     """The comparison as a text table (error in %; a violated bound marked)."""
     lines = ["Predicted vs measured" + (f" ({result.source})" if result.source else "")]
-    rows = [[_below_root(i.path, result.instance), *i.cells()[1:]] for i in result.items]
-    lines += table(("path", "quantity", "predicted", "measured", "error %", "bound", "violated"), rows)
+    if result.period_scale != 1:
+        lines.append(f"the model with its periods × {result.period_scale:g}, as the run scaled them")
+    rows = [[_below_root(i.path, result.instance), *i.cells()[1:], i.pessimism] for i in result.items]
+    lines += table(
+        ("path", "quantity", "predicted", "measured", "error %", "bound", "violated", "bound/measured"), rows
+    )
     middleware = [i for i in result.items if i.quantity == "middleware_cpu_load_percent"]
     if middleware:
         lines.append(

@@ -3,8 +3,9 @@ each value of a JSON text starts on, so that a problem is reported at its JSON p
 
 :func:`schema_problems` walks a parsed value and its schema (draft 2020-12 keywords ``type``,
 ``const``, ``enum``, ``required``, ``properties``, ``additionalProperties: false``, ``items``,
-``minimum``, ``maximum``, ``minLength`` and local ``$ref`` to ``#/$defs/...``; other keywords are
-documentation) and yields ``(json path, message)`` for every violation, in document order.
+``minimum``, ``exclusiveMinimum``, ``maximum``, ``minLength`` and local ``$ref`` to
+``#/$defs/...``; other keywords are documentation) and yields ``(json path, message)`` for
+every violation, in document order.
 As JSON Schema says, a boolean is not a number and an integer is a number whose value is whole.
 :func:`value_lines` gives, for a text :func:`json.loads` accepted, the line where each value at
 a JSON path (``$.threads[2].dispatches``) starts.
@@ -78,6 +79,8 @@ def schema_problems(
     if _TYPE_CHECKS["number"](value):
         if "minimum" in schema and value < schema["minimum"]:
             yield path, f"{value} is below the minimum {schema['minimum']}"
+        if "exclusiveMinimum" in schema and value <= schema["exclusiveMinimum"]:
+            yield path, f"{value} is not above {schema['exclusiveMinimum']}"
         if "maximum" in schema and value > schema["maximum"]:
             yield path, f"{value} is above the maximum {schema['maximum']}"
     if isinstance(value, str) and len(value) < schema.get("minLength", 0):

@@ -26,6 +26,7 @@ from rosaadl.importers.json_schema import schema_problems, value_lines
 __all__ = [
     "FORMAT",
     "VERSION",
+    "KNOWN_VERSIONS",
     "MAX_FILE_BYTES",
     "Statistics",
     "ThreadMeasurement",
@@ -39,7 +40,11 @@ __all__ = [
 ]
 
 FORMAT = "rosaadl-measurements"
-VERSION = 1
+#: The version this release writes; it reads every one of :data:`KNOWN_VERSIONS`.
+VERSION = 2
+KNOWN_VERSIONS = (1, 2)
+#: What version 2 added (a version 1 file holding one was edited by hand).
+_NEW_IN_2 = (("run", "period_scale"), ("processes", "profile"))
 #: a measurements file larger than this is refused before it is read
 MAX_FILE_BYTES = 64 * 1024 * 1024
 _MAX_VALUES = 2_000_000
@@ -104,6 +109,7 @@ class ProcessMeasurement:
     cpu_load_percent: float
     core: int | None
     classifier: str | None = None  #: the model's classifier of the process (``Pkg::type.impl``)
+    profile: tuple[str, str] | None = None  #: (board, core) a profile of it is named after
 
 
 @dataclass(frozen=True)
@@ -144,10 +150,27 @@ class Measurements:
     def run_value(self, name: str, default: Any = None) -> Any:
         return dict(self.run).get(name, default)
 
+    @property
+    def period_scale(self) -> float:
+        """The factor the run multiplied every period by (``run.period_scale``; 1 when absent)."""
+        return float(self.run_value("period_scale", 1.0))
+
 
 def _order_problems(document: dict[str, Any]) -> list[tuple[str, str]]:
-    """min ≤ mean ≤ max in every statistic (a schema cannot say it)."""
+    """min ≤ mean ≤ max in every statistic, and no member of a later version in a version 1
+    file (a schema cannot say it)."""
     problems = []
+    if document.get("version") == 1:
+        for group, member in _NEW_IN_2:
+            rows = document.get(group)
+            if isinstance(rows, dict) and member in rows:  # ``run``: one object
+                problems.append((f"$.{group}.{member}", "a member of version 2 in a version 1 file"))
+            elif isinstance(rows, list):
+                problems += [
+                    (f"$.{group}[{index}].{member}", "a member of version 2 in a version 1 file")
+                    for index, row in enumerate(rows)
+                    if isinstance(row, dict) and member in row
+                ]
     for group, key in (
         ("threads", "execution_time_us"),
         ("threads", "response_time_us"),
@@ -177,7 +200,12 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
     )
     processes = tuple(
         ProcessMeasurement(
-            p["path"], p.get("node"), float(p["cpu_load_percent"]), p.get("core"), p.get("classifier")
+            p["path"],
+            p.get("node"),
+            float(p["cpu_load_percent"]),
+            p.get("core"),
+            p.get("classifier"),
+            (p["profile"]["board"], p["profile"]["core"]) if "profile" in p else None,
         )
         for p in document["processes"]
     )
@@ -223,10 +251,14 @@ def parse_measurements(text: str, file: str | None = None) -> Measurements:
         ) from None
     except (ValueError, RecursionError) as exc:
         raise ParseError(f"malformed JSON: {exc}", file=file) from None
-    if isinstance(document, dict) and document.get("format") == FORMAT and document.get("version") != VERSION:
+    if (
+        isinstance(document, dict)
+        and document.get("format") == FORMAT
+        and document.get("version") not in KNOWN_VERSIONS
+    ):
         raise ParseError(
             f"measurements format version {document.get('version')!r} is not known"
-            f" (this release reads {VERSION})",
+            f" (this release reads {' and '.join(str(v) for v in KNOWN_VERSIONS)})",
             file=file,
             path="$.version",
         )

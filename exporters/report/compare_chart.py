@@ -22,7 +22,10 @@ MEASURED = "#f28e2b"
 def _error_text(item: dict[str, Any]) -> str:
     error = item.get("error_percent")
     text = "no prediction" if error is None else f"{error:+.1f} %"
-    return text + (", violated" if item.get("violated") else "")
+    text += ", violated" if item.get("violated") else ""
+    if item.get("bound") and item.get("measured") and not item["quantity"].endswith("_min_us"):
+        text += f", bound ÷ measured {item['bound'] / item['measured']:.2f}"
+    return text
 
 
 def _label(item: dict[str, Any], root: str) -> str:

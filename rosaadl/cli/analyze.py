@@ -101,6 +101,13 @@ def command(
         selected = parse_only([*selected, "compare"])
     loaded = read_aadl_inputs(list(inputs), time_unit=time_unit, lenient=lenient)
     instance = choose_instance(loaded, root, lenient=lenient)
+    if measurements is not None and measurements.period_scale != 1:
+        from rosaadl.transforms.time_scale import scale_periods
+
+        scale_periods(instance, measurements.period_scale)
+        options.progress(
+            f"the model's periods × {measurements.period_scale:g}, as the measured run scaled them"
+        )
     options.progress(f"analysing {instance.name}: {', '.join(selected)}")
     report = run_analyses(instance, selected, latency_preferences=preferences, measurements=measurements)
     written = report.write_csv(out) if out is not None else []

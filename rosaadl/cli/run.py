@@ -73,6 +73,15 @@ def _chains(instance, plan) -> list:
     is_flag=True,
     help="Trace every dispatch and message and write RUN_DIR/measurements.json (see docs/measurements.md).",
 )
+@click.option(
+    "--period-scale",
+    default="1",
+    show_default=True,
+    metavar="F|auto",
+    help="Multiply every period of the nodes by F (execution times unchanged), for a machine with fewer "
+    "cores than the model's; auto: the smallest F that keeps every CPU here at most 60 % loaded by the "
+    "model's work. Recorded in measurements.json; analyze --compare compares against the scaled model.",
+)
 @click.option("--no-realtime", is_flag=True, help="Do not apply the model's real-time priorities (chrt).")
 @click.option("--no-build", is_flag=True, help="Run the run folder's install as it is (no colcon build).")
 @click.option("--app-name", help="Name of the application's packages (default: the root type's name).")
@@ -86,6 +95,7 @@ def command(
     duration: float,
     emulate: bool,
     measure: bool,
+    period_scale: str,
     out: Path | None,
     no_realtime: bool,
     no_build: bool,
@@ -95,7 +105,12 @@ def command(
 ) -> None:
     """Build and run the generated ROS 2 nodes for S seconds; report what each topic carried."""
     from rosaadl.workflow.run import PLAN_FILE, RunError, RunOptions, load_plan, prepare_run, run_application
+    from rosaadl.workflow.run.period_scale import parse_period_scale
 
+    try:
+        scale = parse_period_scale(period_scale)
+    except RunError as exc:
+        raise UsageError(exc.message) from None
     report = Report()
     chains: list = []
     model_root = None
@@ -139,6 +154,7 @@ def command(
                 measure=measure,
                 chains=tuple(chains),
                 root=model_root,
+                period_scale=scale,
             ),
             progress=options.progress,
         )

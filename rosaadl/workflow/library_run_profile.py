@@ -8,12 +8,17 @@ per measured thread with a dispatch:
   ``nd_usb_cam::usb_cam_nd``), else its ROS node name (``processes[].node``, the model's
   ``ROS_Properties::Node_Name``), else the process's instance name;
 * the thread: the last segment of its instance path;
-* the PDM ``<board>_<core>``: the run's ``run.board`` and ``run.core`` (required);
+* the PDM ``<board>_<core>``: the process's ``processes[].profile`` (what ``rosaadl run`` writes:
+  the PDM it emulated, else this machine, see :mod:`rosaadl.workflow.run.profiles`), else the
+  run's ``run.board`` and ``run.core`` (then required);
 * the execution time: the thread's mean CPU time per dispatch, plus its share of what its
   process spent beyond its callbacks (executor, serialization, DDS), in proportion to its own
   CPU time, so that the PDM's Σ CET / Period is the node's measured CPU load, as a profile of a
   whole node measures it;
-* the Period: the PIM's (a run may scale the rates; nothing is written);
+* the Period: the PIM's; nothing is written. A run with scaled periods (``run.period_scale``)
+  gives the same profile as an unscaled one: the CPU time of a dispatch and the middleware's
+  share (the process's load over its callbacks' load, both measured at the scaled rates) do not
+  depend on the scale;
 * ``Data_Size``: the bytes per message of the one topic the thread publishes, when measured;
 * no ``Raw_MIPS``, ``IPC`` or ``MIPSBudget``: a run without hardware counters measures no
   instruction rate, and the library leaves out what was not measured.
@@ -66,18 +71,29 @@ def run_measurement_rows(
     lines = value_lines(text)
     errors: list[RosaadlError] = []
     notes: list[Diagnostic] = []
+    named = {p.path: p.profile for p in measurements.processes if p.profile is not None}
+    places = {p.path: f"$.processes[{i}].profile" for i, p in enumerate(measurements.processes)}
+    needed = {t.process or t.path.rpartition(".")[0] for t in measurements.threads}
     board, core = measurements.run_value("board"), measurements.run_value("core")
-    for name, value in (("board", board), ("core", core)):
+    checks = [(f"$.run.{n}", f"run.{n}", v) for n, v in (("board", board), ("core", core))]
+    if needed <= set(named):  # every process names its own: run.board and run.core are not needed
+        checks = []
+    for path, pair in named.items():
+        checks += [
+            (f"{places[path]}.{n}", f"{places[path][2:]}.{n}", v)
+            for n, v in zip(("board", "core"), pair, strict=True)
+        ]
+    for where, name, value in checks:
         if value is None or not _PART.match(value):
             shown = "none" if value is None else repr(value)
             errors.append(
                 MeasurementError(
-                    f"run.{name}: the board and core the run was bound to name the profile "
+                    f"{name}: the board and core the run was bound to name the profile "
                     f"(<board>_<core>, letters, digits and single underscores); found {shown}",
                     Location(
                         file=file,
-                        line=lines.get(f"$.run.{name}", lines.get("$.run", 1)),
-                        path=f"$.run.{name}",
+                        line=lines.get(where, lines.get(where.rpartition(".")[0], 1)),
+                        path=where,
                     ),
                 )
             )
@@ -115,8 +131,8 @@ def run_measurement_rows(
                 line=lines.get(where, 1),
                 node=nodes.get(process, process.rpartition(".")[2]),
                 thread=thread.path.rpartition(".")[2],
-                board=board,
-                core=core,
+                board=named.get(process, (board, core))[0],
+                core=named.get(process, (board, core))[1],
                 period_ns=None,
                 cet_ns=max(1, round(thread.execution_time_us.mean * share[thread.path] * 1000)),
                 mips_raw=None,

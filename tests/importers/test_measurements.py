@@ -32,7 +32,7 @@ def test_the_sample_reads_into_typed_rows(tmp_path) -> None:
 
 def test_the_schema_is_versioned_and_documents_every_member() -> None:
     schema = measurements_schema()
-    assert schema["properties"]["version"] == {"const": 1}
+    assert schema["properties"]["version"] == {"enum": [1, 2]}
     assert set(schema["$defs"]) >= {"thread", "process", "topic", "chain", "statistics"}
 
 
@@ -75,6 +75,23 @@ def test_a_hand_edited_value_is_refused_at_its_json_path_and_line() -> None:
             "$.threads[0].deadline_misses",
             "found boolean",
         ),
+        # what version 2 added, in a version 1 file (a hand edit), or edited wrong
+        (lambda d: d["run"].update(period_scale=1.9), "$.run.period_scale", "version 2"),
+        (
+            lambda d: d["processes"][1].update(profile={"board": "a", "core": "b"}),
+            "$.processes[1].profile",
+            "version 2",
+        ),
+        (
+            lambda d: d.update(version=2) or d["run"].update(period_scale=0),
+            "$.run.period_scale",
+            "not above 0",
+        ),
+        (
+            lambda d: d.update(version=2) or d["processes"][0].update(profile={"board": "a"}),
+            "$.processes[0].profile",
+            "missing 'core'",
+        ),
     ],
 )
 def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
@@ -89,9 +106,24 @@ def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
 
 def test_an_unknown_version_is_named() -> None:
     document = tracking_measurements()
-    document["version"] = 2
-    with pytest.raises(ParseError, match="version 2 is not known"):
+    document["version"] = 3
+    with pytest.raises(ParseError, match="version 3 is not known"):
         parse_measurements(json.dumps(document))
+
+
+def test_version_2_records_the_period_scale_and_the_profile_of_each_process() -> None:
+    document = tracking_measurements()
+    document["version"] = 2
+    document["run"]["period_scale"] = 1.9
+    document["processes"][0]["profile"] = {"board": "xu4", "core": "a15"}
+    read = parse_measurements(tracking_measurements_text(document))
+    assert read.period_scale == 1.9
+    assert read.processes[0].profile == ("xu4", "a15") and read.processes[1].profile is None
+
+
+def test_a_version_1_file_still_reads_unscaled() -> None:
+    read = parse_measurements(tracking_measurements_text())
+    assert read.period_scale == 1.0 and read.processes[0].profile is None
 
 
 def test_every_problem_is_listed() -> None:

@@ -12,8 +12,10 @@ every node is up to the stop) count.
 * per thread: dispatches, period mean and jitter (max − min of the release intervals),
   execution time (CPU time of the dispatch's own thread), response time (release to end),
   deadline misses (the node's ``<thread>.deadline`` parameter);
-* per process: CPU load from ``/proc/PID/stat`` (user + system time over the window) and the
-  core it was bound to (its CPU affinity, when it is one core);
+* per process: CPU load, the CPU time of its threads over the window (the scheduler's count of
+  each thread, ``/proc/PID/task/TID/schedstat``, in ns; ``/proc/PID/stat``'s user + system
+  time, in 10 ms ticks, where the kernel keeps no such count) and the core it was bound to
+  (its CPU affinity, when it is one core);
 * per topic: messages, rate, bytes per message (the run's monitor) and bandwidth, with the model
   port that publishes it;
 * per chain (a flow of the model as processes in order): end-to-end latency, each message on the
@@ -42,6 +44,8 @@ __all__ = [
     "read_trace",
     "read_traces",
     "process_cpu_seconds",
+    "thread_cpu_ns",
+    "cpu_seconds_between",
     "process_core",
     "measurements_document",
     "chain_plans",
@@ -136,6 +140,29 @@ def process_cpu_seconds(pid: int) -> float | None:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
+def thread_cpu_ns(pid: int) -> dict[int, int] | None:
+    """Per thread of process ``pid``: its CPU time so far in ns (``/proc/PID/task/TID/schedstat``,
+    the scheduler's own count, to the nanosecond); None when the process is gone or the kernel
+    keeps no such count."""
+    times = {}
+    try:
+        tasks = list(Path(f"/proc/{pid}/task").iterdir())
+    except OSError:
+        return None
+    for task in tasks:
+        try:
+            times[int(task.name)] = int(Path(task, "schedstat").read_text().split()[0])
+        except (OSError, ValueError, IndexError):
+            continue  # a thread that ended meanwhile
+    return times or None
+
+
+def cpu_seconds_between(before: dict[int, int], after: dict[int, int]) -> float:
+    """The CPU time the threads of ``after`` spent since ``before`` (a thread started meanwhile:
+    all of it), in seconds."""
+    return sum(ns - before.get(tid, 0) for tid, ns in after.items()) / 1e9
+
+
 def process_core(pid: int) -> int | None:
     """The one core process ``pid`` may run on, None when it may run on several (or is gone)."""
     try:
@@ -223,10 +250,14 @@ def measurements_document(
     chains: Iterable[ChainPlan],
     run: dict[str, Any],
     root: str | None = None,
+    profiles: dict[str, tuple[str, str]] | None = None,
 ) -> dict[str, Any]:
     """The ``measurements.json`` document of a run: ``nodes`` are the plan's
     :class:`~rosaadl.workflow.run.plan.NodeLaunch` (full name, process path, parameters),
-    ``cpu_load`` and ``cores`` by node full name, ``topics`` the run's topic results."""
+    ``cpu_load``, ``cores`` and ``profiles`` (the board and core a profile of the process is
+    named after, :mod:`~rosaadl.workflow.run.profiles`) by node full name, ``topics`` the run's
+    topic results. ``run.board`` and ``run.core`` are set when every process has the same."""
+    profiles = profiles or {}
     threads, processes, ports = [], [], {}
     for node in nodes:
         trace = traces.get(node.full_name)
@@ -238,6 +269,9 @@ def measurements_document(
                 "cpu_load_percent": round(cpu_load[node.full_name], 4),
                 "core": cores.get(node.full_name),
             }
+            if node.full_name in profiles:
+                board, core = profiles[node.full_name]
+                row["profile"] = {"board": board, "core": core}
             processes.append(row)
         if trace is None:
             continue
@@ -273,7 +307,11 @@ def measurements_document(
                 "latency_us": _stats(latencies),
             }
         )
-    document: dict[str, Any] = {"format": "rosaadl-measurements", "version": 1}
+    named = {tuple(p["profile"].values()) for p in processes if "profile" in p}
+    if len(named) == 1 and all("profile" in p for p in processes):
+        board, core = named.pop()
+        run = {**run, "board": board, "core": core}
+    document: dict[str, Any] = {"format": "rosaadl-measurements", "version": 2}
     if root:
         document["model"] = {"root": root}
     document.update(

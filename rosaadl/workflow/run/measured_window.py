@@ -15,11 +15,14 @@ from rosaadl.workflow.run.measure import (
     MEASUREMENTS_FILE,
     TRACE_FOLDER,
     TRACE_PARAMETERS,
+    cpu_seconds_between,
     measurements_document,
     process_core,
     process_cpu_seconds,
     read_traces,
+    thread_cpu_ns,
 )
+from rosaadl.workflow.run.profiles import run_profile
 
 __all__ = ["MeasuredWindow"]
 
@@ -39,6 +42,8 @@ class MeasuredWindow:
         self.cpu_before: dict[str, float | None] = {}
         self.cpu_after: dict[str, float | None] = {}
         self.cores: dict[str, int | None] = {}
+        self.threads_before: dict[str, dict[int, int] | None] = {}
+        self.threads_after: dict[str, dict[int, int] | None] = {}
 
     def parameters(self) -> list[tuple[str, object]]:
         return TRACE_PARAMETERS(self.traces)
@@ -49,7 +54,14 @@ class MeasuredWindow:
             for p in self.processes
         }
 
+    def _sample_threads(self) -> dict[str, dict[int, int] | None]:
+        return {
+            p.node.full_name: thread_cpu_ns(p.process.pid) if p.process is not None else None
+            for p in self.processes
+        }
+
     def begin(self) -> None:
+        self.threads_before = self._sample_threads()
         self.cpu_before = self._sample()
         self.cores = {
             p.node.full_name: process_core(p.process.pid) for p in self.processes if p.process is not None
@@ -59,6 +71,7 @@ class MeasuredWindow:
     def end(self) -> None:
         self.ended_ns = time.monotonic_ns()
         self.cpu_after = self._sample()
+        self.threads_after = self._sample_threads()
 
     def write(self, plan: Any, result: Any, options: Any) -> Path:
         """Aggregate the traces and the samples into ``measurements.json`` (checked against its
@@ -71,6 +84,10 @@ class MeasuredWindow:
             for name, before in self.cpu_before.items()
             if before is not None and self.cpu_after.get(name) is not None
         }
+        for name, before in self.threads_before.items():  # to the ns where the kernel counts so
+            after = self.threads_after.get(name)
+            if before is not None and after is not None:
+                cpu_load[name] = cpu_seconds_between(before, after) / seconds * 100
         document = measurements_document(
             nodes=plan.nodes,
             traces=read_traces(self.traces, (self.started_ns, self.ended_ns)),
@@ -82,8 +99,10 @@ class MeasuredWindow:
                 "duration_s": round(seconds, 3),
                 "emulate": bool(options.emulate),
                 "host_cores": os.cpu_count() or 1,
+                "period_scale": float(getattr(result, "period_scale", 1.0)),
             },
             root=options.root,
+            profiles={n.full_name: run_profile(n.profile, emulate=options.emulate) for n in plan.nodes},
         )
         text = json.dumps(document, indent=2) + "\n"
         target = self.folder / MEASUREMENTS_FILE

@@ -31,6 +31,7 @@ from rosaadl.errors import RosaadlError
 from rosaadl.exporters.rclpy import WorkspacePlan
 from rosaadl.exporters.rclpy.deployment import NodeInstance
 from rosaadl.fileio import atomic_write_text, loads_bounded
+from rosaadl.workflow.run.profiles import model_profile
 
 __all__ = [
     "PLAN_FILE",
@@ -71,6 +72,7 @@ class NodeLaunch:
     cpus: list[int] | None = None
     policy: str = ""  # SCHED_FIFO | SCHED_RR | "" (as the launch prefix writes it)
     priority: int | None = None
+    profile: list[str] | None = None  # [board, core] of the PDM it is in the model (see .profiles)
 
     @property
     def full_name(self) -> str:
@@ -124,6 +126,10 @@ def _frequency(node: NodeInstance, thread_ident: str) -> float | None:
     return None
 
 
+def _listed(pair: tuple[str, str] | None) -> list[str] | None:
+    return None if pair is None else list(pair)
+
+
 def run_plan(plan: WorkspacePlan) -> RunPlan:
     """The run plan of a generated workspace (see the module docstring)."""
     result = RunPlan(app=plan.app, model=plan.root.classifier or plan.root.name or plan.app)
@@ -144,6 +150,7 @@ def run_plan(plan: WorkspacePlan) -> RunPlan:
                 cpus=list(node.cpus) if node.cpus else None,
                 policy=node.policy if node.priority is not None else "",
                 priority=node.priority,
+                profile=_listed(model_profile(plan.root, node.path)),
             )
         )
         full = result.nodes[-1].full_name

@@ -36,10 +36,11 @@ from pyecore.ecore import EObject
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generate_workspace
-from rosaadl.workflow.run.cores import machine, node_prefix, shared_cpus
+from rosaadl.workflow.run.cores import Machine, machine, node_prefix, shared_cpus
 from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
 from rosaadl.workflow.run.measured_window import MeasuredWindow
 from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
+from rosaadl.workflow.run.period_scale import auto_period_scale, predicted_cpu_loads, scaled_plan
 from rosaadl.workflow.run.plan import RunError, RunPlan, TopicPlan, run_plan, save_plan
 from rosaadl.workflow.run.processes import GRACE_SECONDS, NodeProcess, node_command, start_node, stop_nodes
 
@@ -76,6 +77,7 @@ class RunOptions:
     measure: bool = False  # trace the nodes and write measurements.json (see .measure)
     chains: tuple = ()  # the model's flows as ChainPlan, measured with ``measure``
     root: str | None = None  # the model's root, written into measurements.json
+    period_scale: float | None = 1.0  # every period × this (None: auto), see .period_scale
 
 
 @dataclass
@@ -111,6 +113,7 @@ class RunResult:
     errors: list[Diagnostic] = field(default_factory=list)
     warnings: list[Diagnostic] = field(default_factory=list)
     measurements: Path | None = None
+    period_scale: float = 1.0  # the factor the nodes' periods were multiplied by
 
     @property
     def ok(self) -> bool:
@@ -122,6 +125,7 @@ class RunResult:
             "run_folder": str(self.folder),
             "duration_s": self.duration,
             "ros_domain_id": self.domain_id,
+            "period_scale": self.period_scale,
             **({"measurements": str(self.measurements)} if self.measurements else {}),
             "nodes": [
                 {
@@ -200,6 +204,7 @@ def run_application(
     logs = folder / RUN_LOGS
     logs.mkdir(exist_ok=True)
     here = machine(realtime=options.realtime)
+    plan = _scaled(plan, here, options, result, progress)
     monitor: subprocess.Popen | None = None
     processes: list[NodeProcess] = []
     counts_file = logs / "monitor.json"
@@ -235,6 +240,26 @@ def run_application(
         result.measurements = window.write(plan, result, options)
         progress(f"wrote {result.measurements}")
     return result
+
+
+def _scaled(
+    plan: RunPlan, here: Machine, options: RunOptions, result: RunResult, progress: Callable[[str], None]
+) -> RunPlan:
+    """The plan with its periods scaled as ``options`` says (``auto``: from the model's loads)."""
+    scale = options.period_scale
+    if scale is None:
+        loads = predicted_cpu_loads(plan.nodes, here)
+        scale = auto_period_scale(plan.nodes, here)
+        busiest = max(loads, key=lambda cpu: loads[cpu], default=None)
+        if busiest is not None:
+            progress(
+                f"period scale {scale:g} (auto): the busiest CPU, {busiest}, has a predicted load of "
+                f"{loads[busiest]:.1f} %, scaled {loads[busiest] / scale:.1f} %"
+            )
+    elif scale != 1:
+        progress(f"period scale {scale:g}: every period of the nodes × {scale:g}")
+    result.period_scale = scale
+    return scaled_plan(plan, scale)
 
 
 def _domain_id(env: dict[str, str]) -> int | None:

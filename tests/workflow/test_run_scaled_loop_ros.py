@@ -1,0 +1,184 @@
+"""The measurement loop on this machine, on a real ROS 2 runtime (``make ros``): the library's
+tracking example, emulated, with its periods scaled for the cores here (``--period-scale 3``: the
+tracker's 111 % of a core becomes 37 %; ``auto``'s 1.9, 58 %, leaves a 2-core machine that runs
+other work too little room: there the tracker missed 8 % of its images), measured; its
+measurements made into profiles (``library add-profile``, no hand edit), the model analysed
+again with them, and that prediction of each process's CPU load held to a second measured run
+(within 5 %, the paper's claim, for the tracker and the whole application); the executor
+analysis's bounds of the scaled model beside the measured callbacks and chain.
+
+A run whose threads did not all reach 97 % of their modelled dispatches (the machine stalled, or
+another program took the CPUs) is run again, at most twice, so that a stall does not decide.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from ros_runtime import runtime_marks
+
+import rosaadl.library
+from rosaadl.importers.measurements import read_measurements
+
+pytestmark = [*runtime_marks(), pytest.mark.slow]
+
+SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
+ROOT = "sys_tracking::tracking.impl"
+DURATION = 10
+#: The paper's claim: the analyses predict within 5 %.
+CLAIM = 5.0
+#: The modelled dispatches a run must reach to count (a stalled run is run again).
+REACHED = 0.97
+#: The period scale of the runs (see the module docstring).
+SCALE = 3.0
+
+#: The tracking system with the profiled nodes, in its own package (the profiles' PDMs refine
+#: the processes of the library's system; every instance path stays the same).
+PROFILED = """package tracking_profiled
+public
+  with sw_tracking, sys_tracking, nd_usb_cam_profiles, nd_ocv_color_tracking_profiles, nd_pos_to_cmd_profiles;
+  system tracking_sw_profiled extends sw_tracking::tracking_sw
+  end tracking_sw_profiled;
+  system implementation tracking_sw_profiled.impl extends sw_tracking::tracking_sw.impl
+    subcomponents
+      usbcam: refined to process nd_usb_cam_profiles::usb_cam_nd.xu4_a15;
+      tracker: refined to process nd_ocv_color_tracking_profiles::ocv_color_tracking_nd.xu4_a15;
+      poscmd: refined to process nd_pos_to_cmd_profiles::pos_to_cmd_nd.xu4_a7;
+  end tracking_sw_profiled.impl;
+  system tracking_profiled extends sys_tracking::tracking
+  end tracking_profiled;
+  system implementation tracking_profiled.impl extends sys_tracking::tracking.impl
+    subcomponents
+      rem_trk_sw: refined to system tracking_sw_profiled.impl;
+  end tracking_profiled.impl;
+end tracking_profiled;
+"""
+
+
+def _rosaadl(*args: str, timeout: int = 600) -> dict:
+    done = subprocess.run(
+        [sys.executable, "-m", "rosaadl", "--format", "json", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
+    try:
+        return json.loads(done.stdout)
+    except ValueError:
+        raise AssertionError(done.stderr[-3000:]) from None
+
+
+def _reached(measurements: Path) -> bool:
+    """Every periodic or triggered thread reached REACHED of its modelled dispatches."""
+    read = read_measurements(measurements)
+    scale, seconds = read.period_scale, read.run_value("duration_s")
+    plan = json.loads((measurements.parent / "rosaadl-run.json").read_text())
+    periods = {
+        (node["path"].partition(".")[2] + "." + name[: -len(".period")]): value
+        for node in plan["nodes"]
+        for name, value in node["parameters"]
+        if name.endswith(".period") and value
+    }
+    expected = {path: seconds / (period * scale) for path, period in periods.items()}
+    return all(
+        t.dispatches >= REACHED * expected[t.path]
+        for t in read.threads
+        if t.path in expected and t.dispatches
+    )
+
+
+def _measured_run(folder: Path, copy: Path, *model: str) -> Path:
+    """A measured, emulated, scaled run (of the model, or again of the run folder), its
+    measurements copied to ``copy``; run again (at most twice) until it reached its dispatches."""
+    for attempt in range(3):
+        source = model if model and attempt == 0 else (str(folder), "--no-build")
+        report = _rosaadl(
+            "run", *source, *(["-o", str(folder)] if source == model else []), "--duration", str(DURATION),
+            "--emulate", "--measure", "--period-scale", str(SCALE),
+        )  # fmt: skip
+        assert report["ok"], report["errors"]
+        if _reached(folder / "measurements.json"):
+            break
+    shutil.copy(folder / "measurements.json", copy)
+    return copy
+
+
+@pytest.fixture(scope="module")
+def loop(tmp_path_factory) -> dict:
+    base = tmp_path_factory.mktemp("loop")
+    first = _measured_run(base / "run", base / "first.json", str(SYSTEMS), "--root", ROOT)
+    compared = _rosaadl("analyze", str(SYSTEMS), "--root", ROOT, "--compare", str(first))
+    profiled = _rosaadl("library", "add-profile", str(first), "-o", str(base / "profiles"))
+    assert profiled["ok"], profiled["errors"]
+    (base / "tracking_profiled.aadl").write_text(PROFILED)
+    second = _measured_run(base / "run", base / "second.json")
+    again = _rosaadl(
+        "analyze", str(SYSTEMS), str(base / "profiles"), str(base / "tracking_profiled.aadl"),
+        "--root", "tracking_profiled::tracking_profiled.impl", "--compare", str(second),
+    )  # fmt: skip
+    return {"first": first, "compared": compared, "second": second, "again": again}
+
+
+def _items(report: dict, quantity: str) -> dict[str, dict]:
+    return {
+        i["path"].partition("_Instance.")[2] or i["path"]: i
+        for i in report["analyses"]["compare"]["items"]
+        if i["quantity"] == quantity
+    }
+
+
+def test_the_run_is_scaled_for_this_machine_and_says_so(loop) -> None:
+    read = read_measurements(loop["first"])
+    assert read.period_scale == SCALE
+    assert loop["compared"]["analyses"]["compare"]["period_scale"] == SCALE
+    tracker = _items(loop["compared"], "cpu_load_percent")["rem_trk_sw.tracker"]
+    assert tracker["predicted"] == pytest.approx(111.0 / SCALE, rel=1e-3)
+    assert {p.path.rpartition(".")[2]: p.profile for p in read.processes} == {
+        "usbcam": ("xu4", "a15"),
+        "tracker": ("xu4", "a15"),
+        "poscmd": ("xu4", "a7"),
+    }
+
+
+def test_per_process_load_is_compared_then_predicted_within_5_percent_after_profiling(loop) -> None:
+    first = _items(loop["compared"], "cpu_load_percent")
+    for process in ("rem_trk_sw.usbcam", "rem_trk_sw.tracker", "rem_trk_sw.poscmd"):
+        assert first[process]["predicted"] > 0 and first[process]["measured"] > 0
+    after = _items(loop["again"], "cpu_load_percent")
+    processes = ("rem_trk_sw.usbcam", "rem_trk_sw.tracker", "rem_trk_sw.poscmd")
+    errors = {p: after[p]["error_percent"] for p in processes}
+    print("per-process CPU load error, profiled prediction vs second run (%):", errors)
+    predicted, measured = (sum(after[p][key] for p in processes) for key in ("predicted", "measured"))
+    # the tracker (90 % of the application's CPU time) and the whole application: within 5 %
+    assert abs(errors["rem_trk_sw.tracker"]) <= CLAIM, errors
+    assert abs(measured - predicted) / predicted * 100 <= CLAIM, (predicted, measured)
+    # usb_cam and pos_to_cmd (1 to 4 % of a CPU, most of it middleware) vary from run to run by
+    # up to 12 % on a 2-core machine that runs other work (3 identical runs: usb_cam 3.67, 3.78,
+    # 4.04 %; pos_to_cmd 1.04, 1.27, 1.30 %)
+    assert all(abs(e) <= 3 * CLAIM for e in errors.values()), errors
+
+
+def test_every_executor_bound_is_held_to_the_measured_maximum_with_its_pessimism(loop) -> None:
+    compare = loop["compared"]["analyses"]["compare"]
+    bounds = [i for i in compare["items"] if i["quantity"] in ("executor_response_time_us", "data_age_us")]
+    callbacks = {i["path"].rpartition(".")[2] for i in bounds if i["quantity"] == "executor_response_time_us"}
+    assert callbacks == {
+        "image_broadcaster",
+        "image_tracker",
+        "point_broadcaster",
+        "point_receiver",
+        "cmd_publisher",
+    }
+    assert any(i["path"].endswith("etef_tracking") for i in bounds if i["quantity"] == "data_age_us")
+    ratios = {(p["path"], p["quantity"]): p["ratio"] for p in compare["pessimism"]}
+    for item in bounds:
+        assert item["violated"] == (item["measured"] > item["bound"])
+        assert ratios[(item["path"], item["quantity"])] == pytest.approx(
+            item["bound"] / item["measured"], rel=1e-5
+        )
+    print("bound / measured:", {k[0].rpartition(".")[2] + " " + k[1]: v for k, v in ratios.items()})
