@@ -293,6 +293,33 @@ def test_a_node_that_crashes_is_a_located_error(runs):
     assert "did not start: it exited with code 1" in error["message"] and "boom" in error["message"]
 
 
+def test_a_run_folder_given_relative_to_the_working_directory(runs):
+    """``rosaadl run FOLDER`` with FOLDER relative to where it is started: the nodes and the
+    topic monitor run in folders of their own and still find the run's files."""
+    _, _, _, folder = runs("messages")
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "rosaadl",
+            "--format",
+            "json",
+            "run",
+            folder.name,
+            "--no-build",
+            "--duration",
+            "2",
+        ],
+        cwd=folder.parent,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-3000:]
+    report = json.loads(done.stdout)
+    assert report["ok"] and all(n["exit_code"] == 0 for n in report["nodes"]), report["errors"]
+
+
 def test_a_failed_build_is_a_located_error(runs):
     """A message definition colcon cannot build: exit 1, the end of the build log in the report."""
     _, _, _, folder = runs("messages")

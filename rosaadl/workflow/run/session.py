@@ -188,6 +188,7 @@ def run_application(
     CLI's own) stops every node before it goes on.
     """
     require_ros()
+    folder = Path(folder).absolute()  # the nodes and the monitor run in folders of their own
     result = RunResult(folder=folder, duration=options.duration)
     if options.build:
         progress(f"building {folder / 'src'} with colcon")
