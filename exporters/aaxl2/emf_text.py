@@ -17,6 +17,8 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.bulk import stored_value
+
 __all__ = [
     "java_double",
     "attr_text",
@@ -86,13 +88,7 @@ def java_literal(value: Any) -> str:
 def value_of(obj: EObject, name: str) -> Any:
     """A feature's value without pyecore's descriptor (which also creates an empty holder for a
     feature never set); None when unset. Many-valued features give their collection."""
-    holder = obj.__dict__.get(name)
-    if holder is None:
-        return None
-    try:
-        return holder._get()
-    except AttributeError:
-        return holder
+    return stored_value(obj, name)
 
 
 def items_of(obj: EObject, name: str) -> Any:
