@@ -3,11 +3,13 @@
 pyecore spends most of an object's creation on change notifications, type checks and a
 process-wide registry of every object; a reader that makes tens of thousands of new,
 unobserved objects needs none of that. :class:`FastFactory` fills pyecore's own state directly
-(value holders, containers) and leaves the rest (``_isset``, inverse references, listener
-lists) to be made on first read from what the object holds, so the objects behave exactly like
-ones made with :func:`rosaadl.model.new` (saving, setters, ``delete()``; tested).
-:class:`FastBuilder` is the same by feature *name*, for code that is not a hot loop's inner
-body. :func:`gc_paused` keeps the cyclic garbage collector out of the way while building.
+(value holders, containers; single-valued attributes without a holder, which is most of a read
+model's memory otherwise: :class:`_PlainAttribute`) and leaves the rest (``_isset``, inverse
+references, listener lists) to be made on first read from what the object holds, so the
+objects behave exactly like ones made with :func:`rosaadl.model.new` (saving, setters,
+``delete()``; tested). :class:`FastBuilder` is the same by feature *name*, for code that is
+not a hot loop's inner body. :func:`gc_paused` keeps the cyclic garbage collector out of the
+way while building.
 """
 
 from __future__ import annotations
@@ -388,8 +390,9 @@ class FastFactory:
     The objects behave exactly like ones made through the normal constructor and setters
     (reading, setting, containment, saving, ``delete()``): every set feature has pyecore's
     value holder (an ``EValue`` or ordered set whose feature is held by its class, see
-    :func:`_value_holder`, or another collection), from which ``_isset`` (what pyecore saves)
-    is made when first read; contained objects know their container and containment feature,
+    :func:`_value_holder`, or another collection), except single-valued attributes, whose
+    values are stored plain (:class:`_PlainAttribute`); ``_isset`` (what pyecore saves) is
+    made from these when first read; contained objects know their container and containment feature,
     and referenced objects record the inverse reference pyecore keeps for ``delete()`` (made
     on first read as well for the containment pair alone, see :class:`_InverseOnRead`). What
     is skipped is what a new, unobserved object does not need: notifications (no listener can
