@@ -3,11 +3,13 @@
 pyecore spends most of an object's creation on change notifications, type checks and a
 process-wide registry of every object; a reader that makes tens of thousands of new,
 unobserved objects needs none of that. :class:`FastFactory` fills pyecore's own state directly
-(value holders, containers) and leaves the rest (``_isset``, inverse references, listener
-lists) to be made on first read from what the object holds, so the objects behave exactly like
-ones made with :func:`rosaadl.model.new` (saving, setters, ``delete()``; tested).
-:class:`FastBuilder` is the same by feature *name*, for code that is not a hot loop's inner
-body. :func:`gc_paused` keeps the cyclic garbage collector out of the way while building.
+(value holders, containers; single-valued attributes without a holder, which is most of a read
+model's memory otherwise: :class:`_PlainAttribute`) and leaves the rest (``_isset``, inverse
+references, listener lists) to be made on first read from what the object holds, so the
+objects behave exactly like ones made with :func:`rosaadl.model.new` (saving, setters,
+``delete()``; tested). :class:`FastBuilder` is the same by feature *name*, for code that is
+not a hot loop's inner body. :func:`gc_paused` keeps the cyclic garbage collector out of the
+way while building.
 """
 
 from __future__ import annotations
@@ -19,15 +21,22 @@ from functools import cache
 from typing import Any
 
 import pyecore
-from pyecore.ecore import EClass, EEnum, EObject
+from pyecore.ecore import EClass, EEnum, EObject, EStructuralFeature
 from pyecore.innerutils import InternalSet
 from pyecore.ordered_set_patch import ordered_set
-from pyecore.valuecontainer import EBag, EList, EOrderedSet, ESet, EValue
+from pyecore.valuecontainer import EBag, EList, EOrderedSet, ESet, EValue, PyEcoreValue
 
 from rosaadl import metamodels
 from rosaadl.errors import ModelError
 
-__all__ = ["FeatureSlot", "FastFactory", "FastBuilder", "gc_paused", "check_pyecore_version"]
+__all__ = [
+    "FeatureSlot",
+    "FastFactory",
+    "FastBuilder",
+    "gc_paused",
+    "check_pyecore_version",
+    "stored_value",
+]
 
 #: The pyecore releases whose internals this module was tested against (``pyproject.toml`` pins the same).
 TESTED_PYECORE = "0.15"
@@ -84,8 +93,9 @@ class _IndexOnRead:
     """The default of an ordered set's ``map`` (each item's position, which ``OrderedSet`` keeps
     beside ``items``): made on the first read from ``items`` and kept on the set from then on (a
     non-data descriptor, so the set's own value wins). :meth:`FastFactory.set_many` leaves it
-    out of a set of one item, the most common (the single value of most property
-    associations): a dictionary per such set costs a quarter of what its item does."""
+    out: a reader never reads it (it appends by making a new set or through :meth:`~FastFactory.
+    extend`, which reads it), most sets of a read model are only iterated, and a dictionary per
+    set costs about as much as the items it indexes."""
 
     __slots__ = ()
 
@@ -99,7 +109,8 @@ class _IndexOnRead:
 class _IssetOnRead:
     """The default of ``_isset`` (the features pyecore saves, in the order they were set): made
     on the first read from the object's value holders and collections that :class:`FastFactory`
-    made (instances of :class:`_Built`, in the order they were stored), then kept on the object.
+    made (instances of :class:`_Built`) and the attribute values it stored plain (see
+    :class:`_PlainAttribute`), in the order they were stored, then kept on the object.
 
     pyecore only ever adds to ``_isset``, and always through a read of it, so this is the set
     pyecore would hold: every feature FastFactory filled, then pyecore's own additions. A holder
@@ -112,10 +123,18 @@ class _IssetOnRead:
         if obj is None:
             return self
         d = obj.__dict__
+        cls = type(obj)
         isset = InternalSet()
-        for value in d.values():
+        for name, value in d.items():
+            if name == "_built_containment":  # the holder of the object itself, in its container
+                continue
             if isinstance(value, _Built):
                 isset[value.feature] = None
+            elif not isinstance(value, PyEcoreValue) and name[0] != "_":
+                # a plain value, or one of pyecore's per-object lists (``listeners``)
+                feature = getattr(cls, name, None)
+                if isinstance(feature, EStructuralFeature):
+                    isset[feature] = None
         d["_isset"] = isset
         return isset
 
@@ -126,9 +145,11 @@ class _InverseOnRead:
     object. Most objects are only contained, and nothing else refers to them, so most never
     need one.
 
-    It starts with the containment pair :class:`FastFactory` recorded (``_built_containment``),
-    not with ``_container``: pyecore clears ``_container`` before it takes the pair out of this
-    set, so the pair must be known without it. pyecore changes a container only together with
+    It starts with the containment pair of the value holder or collection :class:`FastFactory`
+    recorded as the one holding the object (``_built_containment``: its ``owner`` and
+    ``feature``, no pair stored per object), not with ``_container``: pyecore clears
+    ``_container`` before it takes the pair out of this set, so the pair must be known without
+    it. pyecore changes a container only together with
     this set (it takes the old pair out, puts the new one in), so when first read, the set
     pyecore would hold is still the recorded pair. A non-containment reference is added
     through a read, so the set exists before anything else refers to the object.
@@ -141,7 +162,7 @@ class _InverseOnRead:
             return self
         d = obj.__dict__
         built = d.get("_built_containment")
-        rels = d["_inverse_rels"] = set() if built is None else {built}
+        rels = d["_inverse_rels"] = set() if built is None else {(built.owner, built.feature)}
         return rels
 
 
@@ -226,6 +247,84 @@ def _value_holder(feature) -> type:
     return _holder_class(EValue, feature, __slots__=("owner", "_value"))
 
 
+_ABSENT = object()
+
+
+class _PlainAttribute:
+    """The class attribute of a single-valued attribute (an ``EAttribute``) of a metamodel
+    class, in place of the feature itself (pyecore's descriptor): :class:`FastFactory` stores
+    such a value in the object's dictionary as it is, without pyecore's value holder (an
+    ``EValue`` per value, the largest part of a read model: a model object has about four set
+    attributes, its position among them, and the holder of each costs more than the value).
+
+    Reading gives the plain value, or the holder's value as pyecore does. Everything else is
+    pyecore's: reading a feature never set (pyecore makes its holder with the default), and
+    every write (``obj.x = v``, ``eSet``, the XMI and JSON readers), before which a plain value
+    gets the holder pyecore would have made for it, so that the write checks, notifies and
+    marks the feature set exactly as before. ``_isset`` counts the plain values
+    (:class:`_IssetOnRead`), so saving writes them like any other. Read from the class, it is
+    the feature, as pyecore's own descriptor is. :func:`stored_value` reads a value without
+    pyecore's getter (which would make a holder for a feature never set).
+    """
+
+    __slots__ = ("feature", "name")
+
+    def __init__(self, feature) -> None:
+        self.feature = feature
+        self.name = feature.name
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            return self.feature
+        held = obj.__dict__.get(self.name, _ABSENT)
+        if held is _ABSENT:
+            return self.feature.__get__(obj, owner)
+        if isinstance(held, EValue):
+            return held._value
+        return held
+
+    def __set__(self, obj, value) -> None:
+        d = obj.__dict__
+        held = d.get(self.name, _ABSENT)
+        if held is not _ABSENT and not isinstance(held, EValue):
+            holder = _object_new(_value_holder(self.feature))
+            holder.owner = obj
+            holder._value = held
+            d[self.name] = holder
+        self.feature.__set__(obj, value)
+
+    def __delete__(self, obj) -> None:
+        self.feature.__delete__(obj)
+
+
+def _plain_storage(feature) -> bool:
+    """Whether :class:`FastFactory` may store the values of ``feature`` plain: a single-valued,
+    non-derived attribute of a class made from an ``EClass`` (not a static pyecore class), whose
+    class then gets a :class:`_PlainAttribute` in place of the feature (once)."""
+    if feature.many or feature.is_reference or feature.derived:
+        return False
+    cls = feature.eContainingClass.python_class
+    if cls.__dict__.get("_staticEClass", True) is not False:
+        return False
+    current = cls.__dict__.get(feature.name)
+    if isinstance(current, _PlainAttribute):
+        return current.feature is feature
+    if current is not feature:
+        return False
+    setattr(cls, feature.name, _PlainAttribute(feature))
+    return True
+
+
+def stored_value(obj: EObject, name: str, default: Any = None) -> Any:
+    """The value of feature ``name`` as ``obj`` holds it (plain, or in pyecore's value holder;
+    a many-valued feature's collection), ``default`` when it was never set or read, without
+    pyecore's getter (which makes a holder for a feature never set)."""
+    held = obj.__dict__.get(name, _ABSENT)
+    if held is _ABSENT:
+        return default
+    return held._value if isinstance(held, EValue) else held
+
+
 @cache
 def _ordered_set_holder(feature) -> type:
     """pyecore's ordered set (``EOrderedSet``) for the values of one many-valued feature: each
@@ -245,7 +344,17 @@ def _collection_holder(base: type, feature) -> type:
 class FeatureSlot:
     """A structural feature with what :class:`FastFactory` needs to know about it, looked up once."""
 
-    __slots__ = ("feature", "name", "is_ref", "containment", "many", "collection", "target", "holder")
+    __slots__ = (
+        "feature",
+        "name",
+        "is_ref",
+        "containment",
+        "many",
+        "collection",
+        "target",
+        "holder",
+        "plain",
+    )
 
     def __init__(self, feature) -> None:
         self.feature = feature
@@ -255,6 +364,7 @@ class FeatureSlot:
         self.many = bool(feature.many)
         self.collection = None
         self.holder = None if self.many else _value_holder(feature)
+        self.plain = _plain_storage(feature)  # an attribute stored without its holder
         if self.many:
             if feature.derived:
                 raise ModelError(f"{feature.name} is derived; it cannot be filled")
@@ -280,8 +390,9 @@ class FastFactory:
     The objects behave exactly like ones made through the normal constructor and setters
     (reading, setting, containment, saving, ``delete()``): every set feature has pyecore's
     value holder (an ``EValue`` or ordered set whose feature is held by its class, see
-    :func:`_value_holder`, or another collection), from which ``_isset`` (what pyecore saves)
-    is made when first read; contained objects know their container and containment feature,
+    :func:`_value_holder`, or another collection), except single-valued attributes, whose
+    values are stored plain (:class:`_PlainAttribute`); ``_isset`` (what pyecore saves) is
+    made from these when first read; contained objects know their container and containment feature,
     and referenced objects record the inverse reference pyecore keeps for ``delete()`` (made
     on first read as well for the containment pair alone, see :class:`_InverseOnRead`). What
     is skipped is what a new, unobserved object does not need: notifications (no listener can
@@ -348,7 +459,14 @@ class FastFactory:
 
     @staticmethod
     def set_value(obj: EObject, slot: FeatureSlot, value: Any) -> None:
-        """Set a single-valued attribute, or a non-containment reference to ``value``."""
+        """Set a single-valued attribute (stored plain, see :class:`_PlainAttribute`), or a
+        non-containment reference to ``value``."""
+        if slot.plain:
+            d = obj.__dict__
+            d[slot.name] = value
+            if "_isset" in d:  # already read: keep it whole
+                d["_isset"][slot.feature] = None
+            return
         ev = _object_new(slot.holder)
         ev.owner = obj
         ev._value = value
@@ -369,7 +487,7 @@ class FastFactory:
         d[slot.name] = ev
         if "_isset" in d:
             d["_isset"][slot.feature] = None
-        FastFactory._refer(obj, slot, (child,))
+        FastFactory._refer(obj, slot, (child,), ev)
 
     @staticmethod
     def set_many(obj: EObject, slot: FeatureSlot, values: list) -> None:
@@ -383,19 +501,10 @@ class FastFactory:
             collection = _object_new(holder)
             collection.owner = obj
             items = values if type(values) is list else list(values)
-            if len(items) == 1:  # its index is made when first read (_IndexOnRead)
-                collection.items = items
-            else:
-                index = {value: position for position, value in enumerate(items)}
-                if len(index) < len(items):  # repeated values: the first one counts
-                    index = {}
-                    items = []
-                    for value in values:
-                        if value not in index:
-                            index[value] = len(items)
-                            items.append(value)
-                collection.items = items
-                collection.map = index
+            if len(items) > 1 and len(set(items)) < len(items):  # repeated: the first one counts
+                seen = set()
+                items = [value for value in items if not (value in seen or seen.add(value))]
+            collection.items = items  # its index is made when first read (_IndexOnRead)
         else:
             collection = slot.collection(obj, feature)
             if isinstance(collection, OrderedSet):
@@ -409,24 +518,36 @@ class FastFactory:
         if "_isset" in d:
             d["_isset"][feature] = None
         if slot.is_ref:
-            FastFactory._refer(obj, slot, values)
+            FastFactory._refer(obj, slot, values, collection)
 
     @staticmethod
-    def _refer(obj: EObject, slot: FeatureSlot, values: Iterable[EObject]) -> None:
-        """Record that ``obj`` refers to (or, for a containment, contains) each of ``values``."""
+    def _refer(obj: EObject, slot: FeatureSlot, values: Iterable[EObject], holder: Any) -> None:
+        """Record that ``obj`` refers to (or, for a containment, contains) each of ``values``,
+        which ``holder`` (its value holder or collection of the feature) holds."""
         feature = slot.feature
-        couple = (obj, feature)
         if slot.containment:
             for child in values:
                 cd = child.__dict__
                 cd["_container"] = obj
                 cd["_containment_feature"] = feature
-                cd["_built_containment"] = couple  # see _InverseOnRead
+                cd["_built_containment"] = holder  # see _InverseOnRead
                 if "_inverse_rels" in cd:  # already read (the child was referred to): keep it whole
-                    cd["_inverse_rels"].add(couple)
+                    cd["_inverse_rels"].add((obj, feature))
         else:
+            couple = (obj, feature)
             for target in values:
                 target._inverse_rels.add(couple)
+
+    @staticmethod
+    def replace_value(obj: EObject, name: str, value: Any) -> None:
+        """Replace the value of the single-valued attribute ``name`` that :meth:`set_value` set,
+        in place, as a reader's second pass does (no notification: the object is still new)."""
+        d = obj.__dict__
+        held = d[name]
+        if isinstance(held, EValue):
+            held._value = value
+        else:
+            d[name] = value
 
     @staticmethod
     def items(collection) -> Any:
@@ -451,7 +572,7 @@ class FastFactory:
         if not isinstance(collection, _Built):  # pyecore's, made by reading the feature
             obj._isset[slot.feature] = None
         if slot.is_ref:
-            FastFactory._refer(obj, slot, values)
+            FastFactory._refer(obj, slot, values, collection)
 
 
 @contextmanager

@@ -34,7 +34,7 @@ from pyecore.resources.xmi import XMIResource
 
 from rosaadl import metamodels
 from rosaadl.arguments import checked, describe, expect_path
-from rosaadl.bulk import FastBuilder  # re-exported: bulk construction by feature name
+from rosaadl.bulk import FastBuilder, stored_value  # FastBuilder re-exported: bulk construction by name
 from rosaadl.errors import Location, ModelError, RosaadlError, UsageError, ValidationError
 from rosaadl.fileio import JsonLimitError, atomic_write_bytes, loads_bounded
 
@@ -772,6 +772,9 @@ def _value_repr(value: Any) -> Any:
     return value  # numbers (Decimal by value: 0.0 == 0), strings, booleans
 
 
+_UNSET = object()
+
+
 def model_differences(a: EObject, b: EObject, *, ignore: Iterable[str] = ("line", "column")) -> list[str]:
     """Structural differences between two models (empty when equal). References compare by path."""
     skip = set(ignore)
@@ -800,10 +803,10 @@ def model_differences(a: EObject, b: EObject, *, ignore: Iterable[str] = ("line"
         return found
 
     def value(obj: EObject, name: str, many: bool, default: Any) -> Any:
-        holder = obj.__dict__.get(name)  # pyecore's value holder for a feature that was touched
-        if holder is None:
+        held = stored_value(obj, name, _UNSET)  # without the getter, which makes a holder
+        if held is _UNSET:
             return () if many else default
-        return holder if many else holder._value
+        return held
 
     def compare(x: EObject, y: EObject) -> None:
         if x.eClass is not y.eClass and x.eClass.name != y.eClass.name:

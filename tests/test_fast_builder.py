@@ -401,3 +401,47 @@ def test_bulk_refuses_a_pyecore_release_it_was_not_tested_with() -> None:
     for other in ("0.16.0", "0.14.3", "1.0"):
         with pytest.raises(ImportError, match=rf"needs pyecore 0\.15\.x .* but pyecore {other} is installed"):
             check_pyecore_version(other)
+
+
+def test_fast_attributes_are_stored_plain_and_read_and_written_as_pyecore_s() -> None:
+    """The factory stores a single-valued attribute without pyecore's value holder (memory);
+    reading gives the value, and writing, unsetting, checks and notifications are pyecore's."""
+    from pyecore.notification import EObserver
+    from pyecore.valuecontainer import BadValueError, EValue
+
+    from rosaadl.bulk import FastFactory, stored_value
+
+    b = model.FastBuilder()
+    fi = b.make("FeatureInstance", name="p", category=b.literal("FeatureCategory", "data port"), line=7)
+    assert type(fi.__dict__["name"]) is str and type(fi.__dict__["line"]) is int
+    assert fi.name == "p" and fi.eGet("line") == 7 and fi.category.name == "dataPort"
+    assert type(fi).name is fi.eClass.findEStructuralFeature("name")  # the feature, read on the class
+    assert [f.name for f in fi._isset] == ["name", "category", "line"]
+    assert stored_value(fi, "name") == "p" and stored_value(fi, "column", 0) == 0
+    seen = []
+
+    class Observer(EObserver):
+        def notifyChanged(self, notification) -> None:
+            seen.append((notification.feature.name, notification.old, notification.new))
+
+    Observer(notifier=fi)
+    fi.name = "q"
+    fi.eSet("line", 8)
+    assert seen == [("name", "p", "q"), ("line", 7, 8)]
+    assert isinstance(fi.__dict__["name"], EValue) and stored_value(fi, "name") == "q"
+    with pytest.raises(BadValueError):
+        fi.column = "x"
+    with pytest.raises(BadValueError):
+        fi.line = "x"
+    del fi.line
+    fresh = model.new("FeatureInstance")
+    assert fi.line == fresh.line and fi.name == "q"
+    assert fi.column == fresh.column and not fi.eIsSet("column")  # never set: pyecore's default
+    FastFactory.replace_value(fi, "name", "r")
+    other = b.make("FeatureInstance", name="s")
+    FastFactory.replace_value(other, "name", "t")
+    assert (fi.name, other.name) == ("r", "t")
+    slow = model.new("FeatureInstance", name="t")
+    assert model.dumps_xmi(other) == model.dumps_xmi(slow) and model.dumps_json(other) == model.dumps_json(
+        slow
+    )

@@ -16,6 +16,7 @@ from decimal import Decimal
 from typing import Any
 
 from pyecore.ecore import EObject
+from pyecore.valuecontainer import EValue
 
 __all__ = [
     "java_double",
@@ -86,13 +87,10 @@ def java_literal(value: Any) -> str:
 def value_of(obj: EObject, name: str) -> Any:
     """A feature's value without pyecore's descriptor (which also creates an empty holder for a
     feature never set); None when unset. Many-valued features give their collection."""
-    holder = obj.__dict__.get(name)
-    if holder is None:
+    held = obj.__dict__.get(name)  # rosaadl.bulk.stored_value, inline: the exporter's hottest read
+    if held is None:
         return None
-    try:
-        return holder._get()
-    except AttributeError:
-        return holder
+    return held._value if isinstance(held, EValue) else held  # a plain value, or a collection
 
 
 def items_of(obj: EObject, name: str) -> Any:

@@ -13,6 +13,7 @@ from typing import Any
 
 from pyecore.ecore import EObject
 
+from rosaadl.bulk import stored_value
 from rosaadl.errors import Diagnostic
 from rosaadl.importers.aadl_text.values import MAX_NESTING
 from rosaadl.model import is_a
@@ -76,10 +77,11 @@ class ValueChecker:
             stack: list[EObject] = [unit]
             while stack:
                 element = stack.pop()
-                for pa in getattr(element, "ownedPropertyAssociations", ()):
+                # read as stored: pyecore's getter would keep an empty list on each element
+                for pa in stored_value(element, "ownedPropertyAssociations", ()):
                     self.association(pa)
                 for name in _MEMBER_LISTS.get(element.eClass.name, ()):
-                    stack.extend(getattr(element, name))
+                    stack.extend(stored_value(element, name, ()))
         return self.out
 
     def association(self, pa: EObject) -> None:

@@ -11,6 +11,7 @@ consistently, and hrefs into property sets that are not predeclared (kept until 
 
 from __future__ import annotations
 
+from rosaadl.bulk import FastFactory
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers import osate_eras
 
@@ -46,8 +47,8 @@ def decode_literals(r: Reader) -> osate_eras.EraChoice:
                 opaque[uri] = opaque.get(uri, 0) + len(targets)
             continue
         for obj, feature_name in targets:
-            # the value holder the reader filled (FastFactory): rewritten in place, as it was made
-            obj.__dict__[feature_name]._value = decoded
+            # the value the reader stored (FastFactory): rewritten in place, as it was made
+            FastFactory.replace_value(obj, feature_name, decoded)
     for href, (count, why) in sorted(undecoded.items()):
         r.warn(
             f"{count} reference(s) to {href} do not decode consistently in any known OSATE era ({why}); "

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pyecore.ecore import EObject
 
-from rosaadl.bulk import FastFactory
+from rosaadl.bulk import FastFactory, stored_value
 from rosaadl.errors import ImportFormatError
 
 from .document import Reader
@@ -133,9 +133,8 @@ def path_at(r: Reader, text: str) -> EObject | None:
 
 
 def name_held(obj: EObject) -> str:
-    """``obj.name or ""`` for an object the reader made, read from its value holder."""
-    holder = obj.__dict__.get("name")
-    return (holder._value if holder is not None else None) or ""
+    """``obj.name or ""`` for an object the reader made, read as it is stored."""
+    return stored_value(obj, "name") or ""
 
 
 class IdsNeeded(Exception):

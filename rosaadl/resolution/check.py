@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 
 from pyecore.ecore import EObject
 
+from rosaadl.bulk import stored_value
 from rosaadl.errors import Diagnostic, NameResolutionError
 from rosaadl.model import is_a
 
@@ -176,39 +177,39 @@ class _ReferenceCheck:
         if is_a(classifier, "ComponentImplementation"):
             type_name = classifier.type or (classifier.name or "").partition(".")[0]
             self.classifier_name(classifier, type_name, "component type", "ComponentType")
-            for sub in classifier.subcomponents:
+            for sub in _items(classifier, "subcomponents"):
                 self.classifier_name(sub, sub.classifier, "subcomponent classifier", "ComponentClassifier")
                 self.associations(sub)
             self.associations(
-                *classifier.connections,
-                *classifier.flowImplementations,
-                *classifier.endToEndFlows,
-                *classifier.callSequences,
+                *_items(classifier, "connections"),
+                *_items(classifier, "flowImplementations"),
+                *_items(classifier, "endToEndFlows"),
+                *_items(classifier, "callSequences"),
             )
         if is_a(classifier, "ComponentType", "FeatureGroupType"):
-            for feature in classifier.features:
+            for feature in _items(classifier, "features"):
                 kinds_f = ("FeatureGroupType",) if enum_name(feature.category) == "featureGroup" else ()
                 self.classifier_name(feature, feature.classifier, "feature classifier", *kinds_f)
                 self.associations(feature)
         if is_a(classifier, "ComponentType"):
-            self.associations(*classifier.flowSpecifications)
+            self.associations(*_items(classifier, "flowSpecifications"))
         if is_a(classifier, "FeatureGroupType") and classifier.inverseOf:
             self.classifier_name(
                 classifier, classifier.inverseOf, "inverse feature group type", "FeatureGroupType"
             )
         if is_a(classifier, "ComponentClassifier"):
-            self.associations(*classifier.modes, *classifier.modeTransitions)
+            self.associations(*_items(classifier, "modes"), *_items(classifier, "modeTransitions"))
         self.associations(classifier)
 
     def associations(self, *holders: EObject) -> None:
         """The property associations the elements ``holders`` own, in order."""
         for holder in holders:
-            for pa in getattr(holder, "ownedPropertyAssociations", ()):
+            for pa in _items(holder, "ownedPropertyAssociations"):
                 self.association(pa)
 
     def association(self, pa: EObject) -> None:
         self.property_name(pa, pa.property)
-        for binding in pa.inBinding:
+        for binding in _items(pa, "inBinding"):
             self.classifier_name(pa, binding, "binding classifier")
         for modal in pa.ownedValues:
             if modal.value is not None:
@@ -287,3 +288,10 @@ class _ReferenceCheck:
                         self.type_name(field, field.type)
                     else:
                         stack.append(field.ownedType)
+
+
+def _items(obj: EObject, name: str):
+    """The items of the list feature ``name`` of ``obj`` (empty when never set, or when its class
+    has none), read without pyecore's getter, which would keep an empty list on every object
+    checked (most elements own no property association, no modes, ...)."""
+    return stored_value(obj, name, ())
