@@ -74,6 +74,16 @@ def _chains(instance, plan) -> list:
     help="Trace every dispatch and message and write RUN_DIR/measurements.json (see docs/measurements.md).",
 )
 @click.option(
+    "--warm-up",
+    "warm_up",
+    type=click.FloatRange(min=0.0, max=3600.0),
+    default=2.0,
+    show_default=True,
+    metavar="S",
+    help="With --measure: seconds the nodes run once all are up before the measured window (start-up and "
+    "discovery left out); the nodes then run --duration seconds more.",
+)
+@click.option(
     "--period-scale",
     default="1",
     show_default=True,
@@ -95,6 +105,7 @@ def command(
     duration: float,
     emulate: bool,
     measure: bool,
+    warm_up: float,
     period_scale: str,
     out: Path | None,
     no_realtime: bool,
@@ -152,6 +163,7 @@ def command(
                 realtime=not no_realtime,
                 build=not no_build,
                 measure=measure,
+                warm_up=warm_up if measure else 0.0,
                 chains=tuple(chains),
                 root=model_root,
                 period_scale=scale,

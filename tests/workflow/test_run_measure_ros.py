@@ -40,6 +40,12 @@ def measured(tmp_path_factory) -> Path:
     )  # fmt: skip
     report = json.loads(done.stdout)
     assert report["measurements"] == str(folder / "run" / "measurements.json"), done.stderr[-3000:]
+    # start-up and discovery are left out: the window begins 2 s after every node is up
+    assert (
+        done.stderr.index("node(s) up in")
+        < done.stderr.index("warming up 2 s")
+        < done.stderr.index(f"running {DURATION} s")
+    ), done.stderr[-3000:]
     return Path(report["measurements"])
 
 

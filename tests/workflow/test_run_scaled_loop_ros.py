@@ -4,7 +4,8 @@ tracker's 111 % of a core becomes 37 %; ``auto``'s 1.9, 58 %, leaves a 2-core ma
 other work too little room: there the tracker missed 8 % of its images), measured; its
 measurements made into profiles (``library add-profile``, no hand edit), the model analysed
 again with them, and that prediction of each process's CPU load held to a second measured run
-(within 5 %, the paper's claim, for the tracker and the whole application); the executor
+(within 5 %, the paper's claim, for the tracker and the whole application, and for each process
+within 5 % or the measurement's run-to-run spread, :data:`REPEATABILITY`); the executor
 analysis's bounds of the scaled model beside the measured callbacks and chain.
 
 A run whose threads did not all reach 97 % of their modelled dispatches (the machine stalled, or
@@ -34,6 +35,8 @@ DURATION = 10
 CLAIM = 5.0
 #: The modelled dispatches a run must reach to count (a stalled run is run again).
 REACHED = 0.97
+#: The run-to-run spread of a small process's measured CPU load here (percent of a CPU).
+REPEATABILITY = 0.5
 #: The period scale of the runs (see the module docstring).
 SCALE = 3.0
 
@@ -157,10 +160,14 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
     # the tracker (90 % of the application's CPU time) and the whole application: within 5 %
     assert abs(errors["rem_trk_sw.tracker"]) <= CLAIM, errors
     assert abs(measured - predicted) / predicted * 100 <= CLAIM, (predicted, measured)
-    # usb_cam and pos_to_cmd (1 to 4 % of a CPU, most of it middleware) vary from run to run by
-    # up to 12 % on a 2-core machine that runs other work (3 identical runs: usb_cam 3.67, 3.78,
-    # 4.04 %; pos_to_cmd 1.04, 1.27, 1.30 %)
-    assert all(abs(e) <= 3 * CLAIM for e in errors.values()), errors
+    # each process within 5 %, or within the repeatability of the measurement where that is
+    # wider: usb_cam and pos_to_cmd (1 to 4 % of a CPU, most of it middleware) vary from run to
+    # run by up to a third of a percent of a CPU (four identical 10 s runs of pos_to_cmd: 121 to
+    # 153 ms of CPU, 61 to 85 ms of it in the thread of rclpy's multi-threaded executor, which
+    # polls while a callback of its mutually exclusive groups runs)
+    for p in processes:
+        off = abs(after[p]["predicted"] - after[p]["measured"])
+        assert off <= max(CLAIM / 100 * after[p]["measured"], REPEATABILITY), (p, after[p], errors)
 
 
 def test_every_executor_bound_is_held_to_the_measured_maximum_with_its_pessimism(loop) -> None:

@@ -75,6 +75,7 @@ class RunOptions:
     startup: float = 60.0  # seconds the nodes have to come up in the ROS graph (before ``duration``)
     grace: float = GRACE_SECONDS
     measure: bool = False  # trace the nodes and write measurements.json (see .measure)
+    warm_up: float = 0.0  # seconds run once the nodes are up, before ``duration`` (not measured)
     chains: tuple = ()  # the model's flows as ChainPlan, measured with ``measure``
     root: str | None = None  # the model's root, written into measurements.json
     period_scale: float | None = 1.0  # every period × this (None: auto), see .period_scale
@@ -308,10 +309,18 @@ def _run_for(
         f"{len(names & up)} of {len(names)} node(s) up in {time.monotonic() - began:.1f} s"
         + (f" (not: {', '.join(missing)})" if missing else "")
     )
+    if options.warm_up > 0:
+        progress(f"warming up {options.warm_up:g} s")
+        _wait(options.warm_up)
     progress(f"running {options.duration:g} s" + (" with the workload twin" if options.emulate else ""))
     if on_start is not None:
         on_start()
-    end = time.monotonic() + options.duration
+    _wait(options.duration)
+
+
+def _wait(seconds: float) -> None:
+    """Wait ``seconds`` (the nodes run meanwhile)."""
+    end = time.monotonic() + seconds
     while time.monotonic() < end:
         time.sleep(0.05)
 
