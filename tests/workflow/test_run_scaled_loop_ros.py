@@ -164,7 +164,7 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
     # wider: usb_cam and pos_to_cmd (1 to 4 % of a CPU, most of it middleware) vary from run to
     # run by up to a third of a percent of a CPU (four identical 10 s runs of pos_to_cmd: 121 to
     # 153 ms of CPU, 61 to 85 ms of it in the thread of rclpy's multi-threaded executor, which
-    # polls while a callback of its mutually exclusive groups runs)
+    # builds a wait set at every wake-up: releases and completions falling together or apart)
     for p in processes:
         off = abs(after[p]["predicted"] - after[p]["measured"])
         assert off <= max(CLAIM / 100 * after[p]["measured"], REPEATABILITY), (p, after[p], errors)
