@@ -4,13 +4,14 @@ bounded time.
 Each format has a small valid seed made here (AADL text, ``.aaxl2`` and Cheddar files exported
 by rosaadl itself, ``.xmi``/``.json`` models, the bundled example's ROSMOD v0.3 software file in
 a copy of its project, v0.1 ``.rosml``, v0.4 JSON, a ``.webgmex`` archive, ``.msg``/``.srv``,
-the bundled measurements CSV, the files of the ROS 2 tutorial package of ``tests/data``);
-hypothesis mutates its bytes (truncation, deletion, duplication, insertion of random or hostile
-bytes, huge and odd numbers in place of digits) and ``rosaadl check --format json`` (``library
-add-profile`` for the CSV, the message parser for ``.msg``/``.srv``) must give exit 0 or 1,
-every error with a file or an element path, and no ``Traceback``, within :data:`SECONDS` and
-:data:`PEAK_MIB` per input. The whole module is
-bounded by the example counts (well under a minute)."""
+the bundled measurements CSV and a ``measurements.json``, the files of the ROS 2 tutorial
+package of ``tests/data``); hypothesis mutates its bytes (truncation, deletion, duplication,
+insertion of random or hostile bytes, huge and odd numbers in place of digits) and ``rosaadl
+check --format json`` (``library add-profile`` for the measurement files, and ``analyze
+--compare`` for ``measurements.json``; the message parser for ``.msg``/``.srv``) must give exit
+0 or 1, every error with a file or an element path, and no ``Traceback``, within
+:data:`SECONDS` and :data:`PEAK_MIB` per input. The whole module is bounded by the example
+counts (well under a minute)."""
 
 from __future__ import annotations
 
@@ -37,12 +38,15 @@ from rosaadl.importers.aadl_text import read_files
 from rosaadl.transforms.instantiate import instantiate
 from tests.conftest import ROOT
 from tests.importers.test_rosmod_text import V02_RML
+from tests.measurements_sample import tracking_measurements, tracking_measurements_text
 
 #: the time one input may take, reading and checking it (a hang or a quadratic blow-up fails)
 SECONDS = 10.0
 #: the memory one input (of at most a few hundred KB) may take above what was resident before
 PEAK_MIB = 256
 EXAMPLES = 30
+#: Mutated measurement files compared with their model (an analysis each: fewer).
+COMPARED_EXAMPLES = 8
 
 AADL = """package fuzz_pkg
 public
@@ -96,6 +100,7 @@ ROSMOD_V04 = {
 
 TRACKING = ROOT / "examples" / "tracking"
 MEASUREMENTS = ROOT / "examples" / "profiles" / "sample_measurements.csv"
+SYSTEMS = ROOT / "library" / "systems"
 MSG = "# a message\nint64 value\nstring[] names\nfloat64[3] vector\nstd_msgs/Header header\n"
 SRV = "int64 request\n---\nbool ok\nstring why\n"
 
@@ -310,3 +315,36 @@ def test_ros2_package_files_are_answered(member, tmp_path):
         _answered(*_run(["--format", "json", "check", str(package)]), f"ros2-package {member} mutation")
 
     mutate()
+
+
+def test_measurements_json_files_are_answered(tmp_path):
+    """A measured run's ``measurements.json`` (the tracking sample, with the board and core a run
+    names) mutated: read by ``library add-profile`` and by ``analyze --compare`` of its model."""
+    document = tracking_measurements()
+    document["run"].update(board="xu4", core="a15")
+    seed = tracking_measurements_text(document).encode()
+    source = tmp_path / "m.json"
+    source.write_bytes(seed)
+    code, out, err, took = _run(
+        ["--format", "json", "library", "add-profile", str(source), "-o", str(tmp_path)]
+    )
+    _answered(code, out, err, took, "measurements.json seed")
+    assert code == 0, out[-2000:] + err[-2000:]
+    compare = ["--format", "json", "analyze", str(SYSTEMS), "--root", "sys_tracking::tracking.impl"]
+    compare += ["--only", "compare", "--compare", str(source)]
+
+    @_SETTINGS
+    @given(data=st.data())
+    def mutate(data):
+        source.write_bytes(data.draw(mutated(seed)))
+        out_dir = tmp_path / "profiles"
+        _answered(*_run(["library", "add-profile", str(source), "-o", str(out_dir)]), "measurements.json")
+
+    @settings(_SETTINGS, max_examples=COMPARED_EXAMPLES)
+    @given(data=st.data())
+    def compared(data):
+        source.write_bytes(data.draw(mutated(seed)))
+        _answered(*_run(compare), "measurements.json compared")
+
+    mutate()
+    compared()
