@@ -311,6 +311,27 @@ class MessageCatalog:
             return ""
         return ""
 
+    def connected_inside(self, feature: EObject) -> bool:
+        """Whether a connection declared in the implementation of the component owning
+        ``feature`` (a process or thread group) joins it to a subcomponent: a port that only
+        passes a thread's port through, not one of the component's own. Unknown (no declarative
+        model, or the implementation is not found) counts as connected."""
+        resolver = self._resolver
+        owner = feature.eContainer()
+        if resolver is None or owner is None or not (owner.classifier or ""):
+            return True
+        try:
+            impl = resolver.classifier(owner.classifier)
+            if impl is None:
+                return True
+            name = (feature.name or "").lower()
+            return any(
+                name in (end.lower() for end in resolver.connection_ends(connection))
+                for connection in resolver.connections(impl)
+            )
+        except RosaadlError:
+            return True
+
     def definitions(self) -> list[InterfaceDefinition]:
         """The interfaces of the ``<app>_interfaces`` package, by kind then name."""
         return sorted(self._definitions.values(), key=lambda d: (d.type.kind, d.type.name))

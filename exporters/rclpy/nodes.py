@@ -402,6 +402,15 @@ class NodeBuilder:
         self.diagnostics.append(Diagnostic("warning", message, Location(path=path)))
         log.warning("%s%s", f"{path}: " if path else "", message)
 
+    def _own_end(self, feature: EObject) -> bool:
+        """A feature of a process or thread group that gets a publisher, subscription, server or
+        client of its own: the end of a connection instance, or a port of the component itself
+        that nothing reaches (a ROSMOD component's publisher that no subscriber of the
+        deployment reads still publishes); not one that only passes a thread's port through."""
+        if self.topology.is_end(feature):
+            return True
+        return not self.topology.reached(feature) and not self.catalog.connected_inside(feature)
+
     # ------------------------------------------------------------------ node classes
 
     def signature(self, process: EObject) -> tuple:
@@ -420,7 +429,7 @@ class NodeBuilder:
             )
             items.append((_relative_path(thread, process), _dispatch_of(thread), ports))
         for container in _containers(process):
-            ends = tuple(f.name for f in _features(container) if self.topology.is_end(f))
+            ends = tuple(f.name for f in _features(container) if self._own_end(f))
             if ends:
                 items.append((_relative_path(container, process), "container", ends))
         return tuple(items)
@@ -470,8 +479,7 @@ class NodeBuilder:
                 ends = [
                     f
                     for f in _features(container)
-                    if enum_name(f.category) in _PORT_CATEGORIES | _ACCESS_CATEGORIES
-                    and self.topology.is_end(f)
+                    if enum_name(f.category) in _PORT_CATEGORIES | _ACCESS_CATEGORIES and self._own_end(f)
                 ]
                 if ends:
                     rel = _relative_path(container, process)

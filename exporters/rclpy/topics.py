@@ -141,6 +141,10 @@ class Topology:
         """``feature`` is the ultimate source or destination of a connection instance."""
         return id(feature) in self._ends
 
+    def reached(self, feature: EObject) -> bool:
+        """``feature`` is on the way of a connection instance (an end, or a feature it passes)."""
+        return id(feature) in self._ends or id(feature) in self._outward
+
     def shared_data(self, thread: EObject) -> list[EObject]:
         """The data components a thread accesses through access connections."""
         return list(self._data_links.get(id(thread), ()))

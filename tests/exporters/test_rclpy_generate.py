@@ -325,3 +325,65 @@ def test_files_and_folders_in_the_way_are_located_errors(tmp_path):
     (out / "nd_pos_to_cmd").write_text("a file where a package folder goes")
     with pytest.raises(GenerationError, match="a file is where a generated folder goes"):
         generate_workspace(instance, out, options=OPTIONS)
+
+
+OWN_PORTS = """
+package own_ports
+public
+  data Msg
+  end Msg;
+
+  thread tick
+    features
+      out_msg: out event data port Msg;
+    properties
+      Dispatch_Protocol => Periodic;
+      Period => 100 ms;
+  end tick;
+
+  thread implementation tick.impl
+  end tick.impl;
+
+  thread group component
+    features
+      status: out event data port Msg;
+      relay: out event data port Msg;
+  end component;
+
+  thread group implementation component.impl
+    subcomponents
+      ticker: thread tick.impl;
+    connections
+      c1: port ticker.out_msg -> relay;
+  end component.impl;
+
+  process node
+  end node;
+
+  process implementation node.impl
+    subcomponents
+      comp: thread group component.impl;
+  end node.impl;
+
+  system top
+  end top;
+
+  system implementation top.impl
+    subcomponents
+      n: process node.impl;
+  end top.impl;
+end own_ports;
+"""
+
+
+def test_a_thread_groups_own_port_that_nothing_reaches_still_publishes():
+    """A thread group's port that no connection reaches is the component's own (a ROSMOD
+    component's publisher that no subscriber of its deployment reads): it gets a publisher; a
+    port that only passes a thread's port through does not get a second one."""
+    from rosaadl.importers import aadl_text
+
+    declarative = aadl_text.read_string(OWN_PORTS, "own_ports.aadl")
+    plan = plan_workspace(declarative, root="own_ports::top.impl", options=OPTIONS)
+    [cls] = plan.classes
+    published = sorted(p.rel_path for t in cls.threads for p in t.ports if p.direction == "out")
+    assert published == [("comp", "status"), ("comp", "ticker", "out_msg")]
