@@ -35,6 +35,7 @@ __all__ = [
     "fit",
     "hatch",
     "nice_step",
+    "ms_axis",
     "percent_scale",
     "distinct_labels",
     "rate",
@@ -178,6 +179,19 @@ def nice_step(span: float, target: int = 8) -> float:
         if raw <= factor * power:
             return factor * power
     return 10 * power
+
+
+def ms_axis(
+    svg: Svg, x0: float, scale: float, axis: float, step: float, top: float, bottom: float, stroke: str
+) -> None:
+    """Vertical grid lines every ``step`` microseconds from 0 to ``axis`` (``scale`` pixels per
+    µs from ``x0``, from ``top - 6`` to ``bottom``), labelled in milliseconds above ``top``."""
+    tick = 0.0
+    while tick <= axis + 1e-9:
+        x = x0 + tick * scale
+        svg.line(x, top - 6, x, bottom, stroke=stroke)
+        svg.text(x, top - 10, f"{num(tick / 1000)} ms", 10.5, anchor="middle", fill=MUTED)
+        tick += step
 
 
 def percent_scale(loads: Iterable[float | None]) -> tuple[float, float]:

@@ -22,6 +22,7 @@ from rosaadl.exporters.report.canvas import (
     Svg,
     empty_chart,
     fit,
+    ms_axis,
     nice_step,
 )
 from rosaadl.exporters.report.view import short_path
@@ -79,12 +80,7 @@ def chain_chart(section: dict[str, Any]) -> str:
     axis = step * -(-longest // step)
     scale = (WIDTH - left - right) / axis
     svg = Svg(WIDTH, max(top + row_h * len(chains) + 30, 90), label, "chart chart-chains")
-    tick = 0.0
-    while tick <= axis + 1e-9:
-        x = left + tick * scale
-        svg.line(x, top - 6, x, top + row_h * len(chains), stroke=GRID)
-        svg.text(x, top - 10, f"{tick / 1000:g} ms", 10.5, anchor="middle", fill=MUTED)
-        tick += step
+    ms_axis(svg, left, scale, axis, step, top, top + row_h * len(chains), GRID)
     for i, chain in enumerate(chains):
         y = top + i * row_h + (row_h - bar_h) / 2
         svg.text(

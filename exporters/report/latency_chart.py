@@ -20,6 +20,7 @@ from rosaadl.exporters.report.canvas import (
     empty_chart,
     fit,
     legend,
+    ms_axis,
     nice_step,
     num,
 )
@@ -71,12 +72,7 @@ def latency_chart(chains: list[dict[str, Any]]) -> str:
     row_h = 2 * bar_h + 4 + gap
     height = top + row_h * len(chains) + 70
     svg = Svg(WIDTH, height, label, "chart chart-latency")
-    tick = 0.0
-    while tick <= axis + 1e-9:
-        x = x0 + tick * scale
-        svg.line(x, top - 6, x, top + row_h * len(chains), stroke=TRACK)
-        svg.text(x, top - 10, f"{num(tick / 1000)} ms", 10.5, anchor="middle", fill=MUTED)
-        tick += step
+    ms_axis(svg, x0, scale, axis, step, top, top + row_h * len(chains), TRACK)
     for i, chain in enumerate(chains):
         y = top + i * row_h
         name = f"{chain['name']} ({chain['mode']})"
