@@ -47,6 +47,13 @@ def _chains(instance, plan) -> list:
     return chain_plans(plan.nodes, plan.topics, flows)
 
 
+def _planned_chains(plan) -> list:
+    """The chains kept in the run plan, as the measurement traces them."""
+    from rosaadl.workflow.run.measure import ChainPlan
+
+    return [ChainPlan(c["name"], tuple(tuple(hop) for hop in c["topics"])) for c in plan.chains]
+
+
 @click.command("run")
 @inputs_argument
 @root_option("The system implementation to run (or the instance to take).")
@@ -117,6 +124,7 @@ def command(
     """Build and run the generated ROS 2 nodes for S seconds; report what each topic carried."""
     from rosaadl.workflow.run import PLAN_FILE, RunError, RunOptions, load_plan, prepare_run, run_application
     from rosaadl.workflow.run.period_scale import parse_period_scale
+    from rosaadl.workflow.run.plan import save_plan
 
     try:
         scale = parse_period_scale(period_scale)
@@ -133,6 +141,9 @@ def command(
             raise UsageError("a run folder holds one application: leave out --root", file=str(folder))
         plan = load_plan(folder)
         options.progress(f"running the run folder {folder} ({plan.model})")
+        if measure:
+            chains = _planned_chains(plan)
+            model_root = plan.model
     else:
         folder = out if out is not None else DEFAULT_RUN_DIR
         if folder.exists() and not folder.is_dir():
@@ -146,8 +157,12 @@ def command(
             instance, folder, rosmod_trace=rosmod_trace, options=GenerationOptions(app_name=app_name)
         )
         report.note([*loaded.warnings, *generated.diagnostics])
+        plan.chains = [
+            {"name": c.name, "topics": [list(hop) for hop in c.topics]} for c in _chains(instance, plan)
+        ]
+        save_plan(plan, folder)  # with its chains, so that a run of the folder measures them too
         if measure:
-            chains = _chains(instance, plan)
+            chains = _planned_chains(plan)
             model_root = plan.model
         options.progress(
             f"generated {len(generated.written)} file(s) into {folder / 'src'} "

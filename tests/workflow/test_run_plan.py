@@ -167,6 +167,17 @@ def test_plan_round_trips_through_the_run_folder(tmp_path):
     assert again.topics[0].model_rate_hz == 2.0
 
 
+def test_the_model_chains_are_kept_in_the_plan_so_a_rerun_of_the_folder_measures_them(tmp_path):
+    plan = run_plan(_plan(_node("n", _thread("t", "periodic", _port("o", "out")), periods=[("t", 0.5)])))
+    plan.chains = [{"name": "s.flow", "topics": [["/a", "/n", "/m"], ["/b", "/m", "/k"]]}]
+    save_plan(plan, tmp_path)
+    assert load_plan(tmp_path).chains == plan.chains
+    older = json.loads((tmp_path / PLAN_FILE).read_text(encoding="utf-8"))
+    del older["chains"]  # a plan written before the chains were kept
+    (tmp_path / PLAN_FILE).write_text(json.dumps(older), encoding="utf-8")
+    assert load_plan(tmp_path).chains == []
+
+
 @pytest.mark.parametrize(
     "text",
     [
@@ -175,8 +186,9 @@ def test_plan_round_trips_through_the_run_folder(tmp_path):
         "[]",
         '{"version": 99}',
         '{"version": 1, "app": "a", "model": "m", "nodes": [{"x": 1}], "topics": []}',
+        '{"version": 1, "app": "a", "model": "m", "nodes": [], "topics": [], "chains": [{"name": "c"}]}',
     ],
-    ids=["empty", "truncated", "list", "version", "fields"],
+    ids=["empty", "truncated", "list", "version", "fields", "chain"],
 )
 def test_a_broken_plan_file_is_a_located_error(tmp_path, text):
     (tmp_path / PLAN_FILE).write_text(text, encoding="utf-8")

@@ -100,6 +100,9 @@ class RunPlan:
     model: str  # the root system instance it came from
     nodes: list[NodeLaunch] = field(default_factory=list)
     topics: list[TopicPlan] = field(default_factory=list)
+    #: the model's end-to-end flows as topic chains between the nodes, measured by ``--measure``:
+    #: ``{"name", "topics": [[topic, publishing node, subscribing node], ...]}``
+    chains: list[dict] = field(default_factory=list)
 
     def as_json(self) -> dict:
         return {"version": PLAN_VERSION, **asdict(self)}
@@ -246,7 +249,13 @@ def load_plan(folder: Path) -> RunPlan:
             for item in data["nodes"]
         ]
         topics = [TopicPlan(**item) for item in data["topics"]]
-        return RunPlan(app=str(data["app"]), model=str(data["model"]), nodes=nodes, topics=topics)
+        chains = [
+            {"name": str(c["name"]), "topics": [[str(part) for part in hop] for hop in c["topics"]]}
+            for c in data.get("chains", [])  # a plan written before chains were kept has none
+        ]
+        return RunPlan(
+            app=str(data["app"]), model=str(data["model"]), nodes=nodes, topics=topics, chains=chains
+        )
     except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
         raise RunError(
             f"unreadable run plan ({exc}); run the model again to rewrite it", file=str(path)
