@@ -41,7 +41,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from rosaadl.analysis.instance_values import category_of
+from rosaadl.analysis.instance_values import bound_processor, category_of
 from rosaadl.analysis.registry import Analysis, AnalysisContext, register
 from rosaadl.analysis.rendering import csv_text, fmt, table
 from rosaadl.errors import AnalysisError, Diagnostic, Location, RosaadlError
@@ -118,6 +118,9 @@ class ComparisonResult:
     source: str | None = None
     instance: str = ""  #: the root instance's name (left out of the text's paths)
     period_scale: float = 1.0  #: the run's period scale (the model compared is scaled by it)
+    #: (core the run used, the processes on it) where the run placed the processes otherwise
+    #: than the model binds them: the executor bounds are then those of the run's placement
+    placement: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -138,6 +141,8 @@ class ComparisonResult:
         if self.source:
             out["measurements"] = self.source
         out["period_scale"] = self.period_scale
+        if self.placement:
+            out["placement"] = [{"core": core, "processes": list(paths)} for core, paths in self.placement]
         out["pessimism"] = [
             {"path": i.path, "quantity": i.quantity, "ratio": _rounded(i.pessimism)}
             for i in self.items
@@ -185,6 +190,7 @@ class _Comparison:
         self.topics = {_below_root(t.port, self.name): t for t in measurements.topics if t.port}
         self.chains = {_below_root(c.name, self.name): c for c in measurements.chains}
         self.used: set[tuple[str, str]] = set()
+        self.placement: dict[str, str] = {}
 
     def thread(self, path: str) -> Any:
         key = _below_root(path, self.name)
@@ -400,13 +406,43 @@ class _Comparison:
             else:
                 self.add(chain.name, f"latency_{chain.mode}_us", chain.worst_us, measured.latency_us.max)
 
+    def run_placement(self) -> dict[str, str]:
+        """Process path → the core the run used (``CPU n``), when the run placed the measured
+        processes of the model otherwise than the model's bindings (two processes on one core
+        that the model keeps apart, or the other way round); else nothing. Every measured
+        process must name its core."""
+        placement: dict[str, str] = {}
+        model: dict[str, str] = {}
+        for process in component_instances(self.root):
+            if category_of(process) != "process":
+                continue
+            path = instance_path(process)
+            measured = self.processes.get(_below_root(path, self.name))
+            if measured is None:
+                continue
+            if measured.core is None:
+                return {}
+            placement[path] = f"CPU {measured.core}"
+            bound = bound_processor(process)
+            model[path] = instance_path(bound) if bound is not None else path  # unbound: alone
+        return placement if _groups(placement) != _groups(model) else {}
+
     def executor(self) -> None:
         """The executor analysis's bounds: each callback's response time (release to end) and
         each chain's data age (the measured chain: publish time on its first topic to receipt on
-        its last, a part of the chain's span, so never more than its data age)."""
+        its last, a part of the chain's span, so never more than its data age). Where the run
+        placed the processes otherwise than the model (:meth:`run_placement`: a machine with
+        fewer cores than the model), the bounds are those of the processes as they ran."""
         result = self.context.result("executor")
         if result is None:
             return
+        self.placement = self.run_placement()
+        if self.placement:
+            from rosaadl.analysis.executor_analysis import analyze_executors
+
+            result = analyze_executors(
+                self.root, schedulability=self.context.result("sched"), placement=self.placement
+            )
         for callback in result.callbacks:
             measured = self.thread(callback.path)
             if measured is None or measured.response_time_us is None or callback.wcrt is None:
@@ -465,7 +501,20 @@ def compare_measurements(context: AnalysisContext, measurements: Any) -> Compari
         measurements.source,
         comparison.name,
         float(getattr(measurements, "period_scale", 1.0)),
+        _placement_groups(comparison.placement),
     )
+
+
+def _groups(cores: dict[str, str]) -> set[frozenset[str]]:
+    """The sets of keys that share a value."""
+    return {frozenset(k for k in cores if cores[k] == value) for value in cores.values()}
+
+
+def _placement_groups(placement: dict[str, str]) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    cores: dict[str, list[str]] = {}
+    for path, core in placement.items():
+        cores.setdefault(core, []).append(path)
+    return tuple((core, tuple(paths)) for core, paths in sorted(cores.items()))
 
 
 def _run(context: AnalysisContext) -> ComparisonResult:
@@ -485,6 +534,12 @@ def compare_text(result: ComparisonResult) -> list[str]:
     lines = ["Predicted vs measured" + (f" ({result.source})" if result.source else "")]
     if result.period_scale != 1:
         lines.append(f"the model with its periods × {result.period_scale:g}, as the run scaled them")
+    if result.placement:
+        cores = "; ".join(
+            f"{core}: {', '.join(_below_root(p, result.instance) for p in paths)}"
+            for core, paths in result.placement
+        )
+        lines.append(f"executor bounds for the processes on the cores the run used ({cores})")
     rows = [[_below_root(i.path, result.instance), *i.cells()[1:], i.pessimism] for i in result.items]
     lines += table(
         ("path", "quantity", "predicted", "measured", "error %", "bound", "violated", "bound/measured"), rows

@@ -6,7 +6,11 @@ response time of each callback with the bound of its executor kind
 (:mod:`rosaadl.analysis.executor_response`): ROSMOD FIFO, PFIFO or EDF (non-preemptive), the
 ROS 2 single-threaded executor (polling points), the multi-threaded executor (busy window). The
 executor's thread is preempted by the threads of executors of higher or equal OS ``Priority`` on
-the same core, which are added as interference. A subscription is released by every topic that
+the same core, which are added as interference; a callback's dispatch latency
+(``ROS_Properties::Dispatch_Latency``: its executor, idle, starts it at most that long after its
+release) is added to its bound, and so passed on as jitter to what its messages release. A
+measured run that put processes on other cores than the model binds them to is analysed as it
+ran (``placement``). A subscription is released by every topic that
 feeds it, with the release jitter its publishers pass on (their response times); the bounds of
 all executors are iterated until these jitters settle. Beside each bound it sets the preemptive-thread
 WCRT of the schedulability analysis (what OSATE and Cheddar assume). Chains and their bounds come
@@ -19,7 +23,7 @@ of the HTML report. JSON: ``callbacks: [{"path", "executor", "kind", "wcrt"}]`` 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
@@ -42,7 +46,7 @@ from rosaadl.analysis.rendering import csv_text, fmt, json_number, table
 from rosaadl.analysis.tasks import time_base
 from rosaadl.errors import Diagnostic, Location
 
-__all__ = ["CallbackBound", "ExecutorResult", "analyze_executors", "executor_text", "executor_csv"]
+__all__ = ["CallbackBound", "ExecutorResult", "analyze_executors", "placed", "executor_text", "executor_csv"]
 
 _GANTT_INTERVALS = 400
 
@@ -306,7 +310,13 @@ def _all_bounds(
         key = (executor, tuple(interfering))
         if key not in known:
             known[key] = executor_bounds(executor, interfering)
-        bounds.update(known[key])
+        bounds.update(
+            {
+                c.path: bound + c.dispatch_latency if bound is not None else None
+                for c in executor.callbacks
+                for bound in (known[key][c.path],)
+            }
+        )
     return bounds
 
 
@@ -340,14 +350,29 @@ def _thread_wcrts(root: Any, schedulability: Any) -> dict[str, Fraction]:
     return thread_response_times(root, schedulability)
 
 
-def analyze_executors(source: Any, *, schedulability: Any = None, limit: int = 100) -> ExecutorResult:
-    """Callback response times under their executors and cause-effect chain bounds (module doc)."""
+def placed(executors: Sequence[Executor], placement: Mapping[str, str]) -> tuple[Executor, ...]:
+    """``executors`` on the cores ``placement`` gives their processes (process path → core; an
+    executor of a process it does not name keeps its bound processor)."""
+    result = []
+    for executor in executors:
+        owner = next((p for p in placement if executor.path == p or executor.path.startswith(p + ".")), None)
+        result.append(replace(executor, processor=placement[owner]) if owner is not None else executor)
+    return tuple(result)
+
+
+def analyze_executors(
+    source: Any, *, schedulability: Any = None, limit: int = 100, placement: Mapping[str, str] | None = None
+) -> ExecutorResult:
+    """Callback response times under their executors and cause-effect chain bounds (module doc);
+    with ``placement`` (process path → core), the processes on those cores (:func:`placed`)."""
     from rosaadl.analysis.latency.transmission import connection_transmission_us
 
     root = instance_root(source)
     mode = system_modes(root)[0]
     diagnostics: list[Diagnostic] = []
     declared = executors_from_instance(root, diagnostics, mode)
+    if placement:
+        declared = placed(declared, placement)
     arrivals = _arrival_streams(root, declared, mode)
     executors, _ = _with_jitter(declared, arrivals, {})  # the model's periods, for the report
     bounds, unsettled, unknown = _settled_bounds(declared, arrivals)

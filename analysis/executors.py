@@ -20,6 +20,10 @@ The kind of a callback comes from ``ROS_Properties::Thread_Kind``: ``Timer``, ``
 ``Service`` threads services; ``Main`` and ``Spinner`` threads are the executor itself, not
 callbacks. Without a kind, a thread that provides a subprogram access is a service, one that
 requires one a client, a periodic thread a timer and any other a subscription.
+
+A callback's ``ROS_Properties::Dispatch_Latency`` (on the thread, else inherited from its process
+or a system around it; default 0) is the longest time its executor takes, idle, from the
+callback's release to its start; the analysis adds it to the callback's response time.
 """
 
 from __future__ import annotations
@@ -86,6 +90,8 @@ class Callback:
     #: release jitter (µs) of each stream, ``period`` first (the response times of the callbacks
     #: whose messages release it; ``executor_analysis`` sets them)
     jitters: tuple[Fraction, ...] = ()
+    #: the executor's latency (µs) from its release to its start, idle (``Dispatch_Latency``)
+    dispatch_latency: Fraction = Fraction(0)
 
 
 @dataclass(frozen=True)
@@ -158,6 +164,16 @@ class _Reader:
         value = self.props.seconds(obj, name, self.mode)
         return value * _US if value is not None else None
 
+    def inherited_us(self, obj: Any, name: str) -> Fraction | None:
+        """``name`` (a time) on ``obj``, else on the nearest component around it that has it."""
+        current = obj
+        while current is not None:
+            value = self.us(current, name)
+            if value is not None:
+                return value
+            current = current.eContainer()
+        return None
+
     def kind(self, thread: Any) -> str | None:
         stated = self.props.enum(thread, "ROS_Properties::Thread_Kind", self.mode)
         if stated:
@@ -195,6 +211,10 @@ class _Reader:
         priority = self.props.value(thread, "Thread_Properties::Priority", self.mode)
         stated = self.props.value(thread, "ROS_Properties::Callback_Group", self.mode)
         dispatch = (self.props.enum(thread, "Thread_Properties::Dispatch_Protocol", self.mode) or "").lower()
+        latency = self.inherited_us(thread, "ROS_Properties::Dispatch_Latency")
+        if latency is not None and latency < 0:
+            self.props.report("error", "Dispatch_Latency must not be negative; 0 assumed", thread)
+            latency = None
         return Callback(
             path=_path(thread),
             executor=executor,
@@ -207,6 +227,7 @@ class _Reader:
             order=order,
             periodic=dispatch == "periodic",
             thread=thread,
+            dispatch_latency=latency or Fraction(0),
         )
 
     def executor(self, owner: Any, threads: list[Any], rosmod: bool) -> Executor | None:

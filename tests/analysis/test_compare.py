@@ -9,6 +9,7 @@ import pytest
 
 import rosaadl.library
 from rosaadl.analysis import run_analyses
+from rosaadl.analysis.compare import compare_text
 from rosaadl.cli import main
 from rosaadl.exporters.report import render_report
 from rosaadl.importers.aadl_text import read_files
@@ -158,3 +159,35 @@ def test_a_run_of_the_extended_system_matches_the_extending_one(tracking) -> Non
     result = _compare(tracking, document, "cpu,compare").result("compare")
     item = result.item("rem_trk_sw.usbcam.image_broadcaster", "execution_time_us")
     assert item.measured == 2330.0
+
+
+def test_executor_bounds_follow_the_cores_the_run_put_the_processes_on(tracking) -> None:
+    """The model keeps usb_cam and pos_to_cmd on two cores; a run on a smaller machine put them
+    on one: the executor bounds compared are those of the processes as they ran (each executor
+    then also waits for the other's callbacks), and the comparison says so."""
+    apart = _compare(tracking, only="sched,executor,compare").result("compare")
+    alone = apart.item("rem_trk_sw.poscmd.cmd_publisher", "executor_response_time_us").bound
+    assert not apart.placement and "placement" not in apart.as_dict()
+    document = tracking_measurements()
+    document["processes"][1]["core"] = 0
+    together = _compare(tracking, document, only="sched,executor,compare").result("compare")
+    shared = together.item("rem_trk_sw.poscmd.cmd_publisher", "executor_response_time_us").bound
+    assert shared > alone
+    assert together.as_dict()["placement"] == [
+        {
+            "core": "CPU 0",
+            "processes": [
+                "tracking_impl_Instance.rem_trk_sw.usbcam",
+                "tracking_impl_Instance.rem_trk_sw.poscmd",
+            ],
+        }
+    ]
+    text = "\n".join(compare_text(together))
+    assert (
+        "executor bounds for the processes on the cores the run used "
+        "(CPU 0: rem_trk_sw.usbcam, rem_trk_sw.poscmd)" in text
+    )
+    document["processes"][1]["core"] = None  # a process the run did not pin: the model's cores
+    unpinned = _compare(tracking, document, only="sched,executor,compare").result("compare")
+    assert not unpinned.placement
+    assert unpinned.item("rem_trk_sw.poscmd.cmd_publisher", "executor_response_time_us").bound == alone

@@ -227,3 +227,41 @@ def test_a_subscription_of_a_publisher_without_bound_has_none_and_says_why():
     assert wcrts(result) == {"a": None, "b": None, "s": None}
     (why,) = [d for d in result.diagnostics if d.location.path.endswith(".s")]
     assert why.severity == "error" and "whose messages release it has no bound" in why.message
+
+
+def test_the_dispatch_latency_of_an_executor_adds_to_its_callbacks_and_what_they_release():
+    """``ROS_Properties::Dispatch_Latency`` 2 ms on node ``pub`` (inherited by its timer p,
+    T = 100 ms, C = 1 ms) and 0.5 ms on subscription s itself (C = 50 ms, another core): p starts
+    at most 2 ms after its release, so its bound is 3 ms, and s gets p's messages with a release
+    jitter of 3 ms; s's bound is 50 + 0.5. The chain: p's period, then 3 + 50.5."""
+    p = callback("p", 100_000, 1_000, kind="Timer")
+    s = callback("s", None, 50_000, kind="Subscriber", dispatch="Sporadic")
+    s.ownedPropertyAssociations.append(pa("ROS_Properties::Dispatch_Latency", num(500, "us")))
+    root = two_nodes([p], p, s)
+    pub = next(c for c in root.componentInstances if c.name == "pub")
+    pub.ownedPropertyAssociations.append(pa("ROS_Properties::Dispatch_Latency", num(2, "ms")))
+    result = analyze_executors(root)
+    assert wcrts(result) == {"p": 3_000, "s": 50_500}
+    assert {c.name: c.reaction_time for c in result.chains}["pub.p -> sub.s"] == 100_000 + 3_000 + 50_500
+    assert not [d for d in result.diagnostics if d.severity == "error"]
+
+
+def test_a_negative_dispatch_latency_is_a_located_error_and_counts_as_none():
+    p = callback("p", 100_000, 1_000, kind="Timer")
+    p.ownedPropertyAssociations.append(pa("ROS_Properties::Dispatch_Latency", num(-1, "ms")))
+    result = analyze_executors(system(component("node", "process", p)))
+    assert wcrts(result) == {"p": 1_000}
+    (error,) = [d for d in result.diagnostics if d.severity == "error"]
+    assert "Dispatch_Latency" in error.message and error.location.path.endswith("node.p")
+
+
+def test_a_placement_puts_the_executors_of_processes_on_the_cores_a_run_used():
+    """Timers p (pub, cpu0) and q (sub, cpu1) of 10 ms every 100 ms: bound 10 ms each on their
+    own cores; placed on one core (as a run on a smaller machine may place them), each executor
+    is preempted by the other's (equal OS priority): 20 ms."""
+    p = callback("p", 100_000, 10_000, kind="Timer")
+    q = callback("q", 100_000, 10_000, kind="Timer")
+    root = two_nodes([p], p, q)
+    assert wcrts(analyze_executors(root)) == {"p": 10_000, "q": 10_000}
+    placement = {"app_i_Instance.pub": "CPU 0", "app_i_Instance.sub": "CPU 0"}
+    assert wcrts(analyze_executors(root, placement=placement)) == {"p": 20_000, "q": 20_000}
