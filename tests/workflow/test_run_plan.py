@@ -4,6 +4,7 @@ modelled rates propagated through the dispatching ports, and the plan file of a 
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -222,3 +223,22 @@ def test_tracking_plan_has_the_launch_files_nodes(tmp_path):
     assert rates["/usb_cam/image_raw"] == pytest.approx(30.0, rel=1e-3)
     assert {t.name: t.model_bytes for t in plan.topics}["/usb_cam/image_raw"] > 100_000
     json.dumps(plan.as_json())
+
+
+def test_the_monitor_keeps_off_the_cpus_of_the_nodes_work():
+    from rosaadl.workflow.run.cores import Machine, quietest_cpus
+    from rosaadl.workflow.run.monitor import monitor_command
+    from rosaadl.workflow.run.plan import NodeLaunch
+
+    def node(name, cpus):
+        return NodeLaunch(name=name, namespace="/", package="p", executable=name, path=name, cpus=cpus)
+
+    here = Machine(cpus=[0, 1, 2])
+    nodes = [node("a", [0]), node("b", [4]), node("c", None)]  # core 4 of the model: CPU 1 here
+    assert quietest_cpus(nodes, here, {}) == [2]
+    two = Machine(cpus=[0, 1])
+    assert quietest_cpus(nodes, two, {0: 40.0, 1: 4.0}) == [1]
+    assert quietest_cpus(nodes, two, {0: 4.0, 1: 40.0}) == [0]
+    assert quietest_cpus([node("c", None)], two, {}) == []  # nothing pinned: the monitor is not
+    assert monitor_command(Path("s"), Path("o"), [1])[-3:] == ["s", "o", "1"]
+    assert monitor_command(Path("s"), Path("o"))[-2:] == ["s", "o"]

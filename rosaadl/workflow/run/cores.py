@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 from rosaadl.workflow.run.plan import NodeLaunch
 
-__all__ = ["Machine", "machine", "map_cpus", "shared_cpus", "node_prefix"]
+__all__ = ["Machine", "machine", "map_cpus", "shared_cpus", "node_prefix", "quietest_cpus"]
 
 _CHRT_FLAGS = {"SCHED_FIFO": "-f", "SCHED_RR": "-r"}
 
@@ -129,3 +129,15 @@ def node_prefix(
 
 def _cpu_list(cpus: list[int]) -> str:
     return ",".join(str(c) for c in cpus)
+
+
+def quietest_cpus(nodes: list[NodeLaunch], here: Machine, loads: dict[int, float]) -> list[int]:
+    """The CPUs for the run's own processes (the topic monitor), away from the nodes' work: the
+    CPUs of this machine no pinned node uses, else the one the model loads least (``loads``:
+    per CPU, in %); none (no pinning) when no node is pinned."""
+    pinned = [set(map_cpus(node.cpus, here.cpus)[0]) for node in nodes if node.cpus]
+    if not pinned or not here.cpus:
+        return []
+    used = set().union(*pinned)
+    free = [cpu for cpu in here.cpus if cpu not in used]
+    return free or [min(here.cpus, key=lambda cpu: (loads.get(cpu, 0.0), cpu))]

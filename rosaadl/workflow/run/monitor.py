@@ -47,9 +47,10 @@ _READY_SECONDS = 60.0
 _STOP_SECONDS = 10.0
 
 
-def monitor_command(spec: Path, out: Path) -> list[str]:
-    """The command line of the monitor process."""
-    return [sys.executable, str(Path(__file__).resolve()), str(spec), str(out)]
+def monitor_command(spec: Path, out: Path, cpus: list[int] | tuple[int, ...] = ()) -> list[str]:
+    """The command line of the monitor process (``cpus``: the CPUs it keeps to, all when none)."""
+    pinned = [",".join(str(cpu) for cpu in cpus)] if cpus else []
+    return [sys.executable, str(Path(__file__).resolve()), str(spec), str(out), *pinned]
 
 
 def topic_counts(entry: dict) -> tuple[int, float | None, float | None]:
@@ -78,10 +79,16 @@ def _write(path: Path, data: object) -> None:
 
 
 def start_monitor(
-    topics: list, nodes: list[str], counts_file: Path, env: dict[str, str], cwd: Path
+    topics: list,
+    nodes: list[str],
+    counts_file: Path,
+    env: dict[str, str],
+    cwd: Path,
+    cpus: list[int] | tuple[int, ...] = (),
 ) -> subprocess.Popen:
     """Start the monitor of ``topics`` (:class:`~rosaadl.workflow.run.plan.TopicPlan`) and
-    ``nodes`` (full names), writing into ``counts_file``; return once it listens (a
+    ``nodes`` (full names), writing into ``counts_file``, on ``cpus`` (all when none: see
+    :func:`~rosaadl.workflow.run.cores.quietest_cpus`); return once it listens (a
     :class:`RunError` when it does not come up)."""
     from rosaadl.workflow.run.environment import tail
     from rosaadl.workflow.run.plan import RunError
@@ -104,7 +111,7 @@ def start_monitor(
     log = logs / "monitor.log"
     with open(log, "wb") as out:
         monitor = subprocess.Popen(
-            monitor_command(spec, counts_file),
+            monitor_command(spec, counts_file, cpus),
             cwd=cwd,
             env=env,
             stdin=subprocess.DEVNULL,
@@ -148,7 +155,11 @@ def main(argv: list[str] | None = None) -> int:
     from rclpy.qos import QoSHistoryPolicy, QoSProfile, QoSReliabilityPolicy
     from rclpy.signals import SignalHandlerOptions
 
-    spec_path, out_path = (Path(a) for a in (argv if argv is not None else sys.argv[1:]))
+    args = argv if argv is not None else sys.argv[1:]
+    spec_path, out_path = Path(args[0]), Path(args[1])
+    if len(args) > 2 and hasattr(os, "sched_setaffinity"):
+        # before rclpy starts its threads, which keep the affinity they start with
+        os.sched_setaffinity(0, {int(cpu) for cpu in args[2].split(",")})
     spec = json.loads(spec_path.read_text(encoding="utf-8"))
     topics, expected = spec["topics"], set(spec["nodes"])
     stop = []

@@ -36,7 +36,7 @@ from pyecore.ecore import EObject
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generate_workspace
-from rosaadl.workflow.run.cores import Machine, machine, node_prefix, shared_cpus
+from rosaadl.workflow.run.cores import Machine, machine, node_prefix, quietest_cpus, shared_cpus
 from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
 from rosaadl.workflow.run.measured_window import MeasuredWindow
 from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
@@ -211,7 +211,9 @@ def run_application(
     processes: list[NodeProcess] = []
     counts_file = logs / "monitor.json"
     try:
-        monitor = start_monitor(plan.topics, [n.full_name for n in plan.nodes], counts_file, env, folder)
+        quiet = quietest_cpus(plan.nodes, here, predicted_cpu_loads(plan.nodes, here))
+        names = [n.full_name for n in plan.nodes]
+        monitor = start_monitor(plan.topics, names, counts_file, env, folder, quiet)
         extra = [(EMULATE_PARAMETER, True)] if options.emulate else []
         window = MeasuredWindow(folder, processes) if options.measure else None
         if window is not None:
