@@ -237,6 +237,8 @@ def test_the_monitor_keeps_off_the_cpus_of_the_nodes_work():
     nodes = [node("a", [0]), node("b", [4]), node("c", None)]  # core 4 of the model: CPU 1 here
     assert quietest_cpus(nodes, here, {}) == [2]
     two = Machine(cpus=[0, 1])
+    assert quietest_cpus(nodes, two, {}) == [1]  # core 4 of the model: CPU 0 here
+    nodes.append(node("d", [1]))
     assert quietest_cpus(nodes, two, {0: 40.0, 1: 4.0}) == [1]
     assert quietest_cpus(nodes, two, {0: 4.0, 1: 40.0}) == [0]
     assert quietest_cpus([node("c", None)], two, {}) == []  # nothing pinned: the monitor is not
