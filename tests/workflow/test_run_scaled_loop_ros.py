@@ -171,8 +171,16 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
         assert off <= max(CLAIM / 100 * after[p]["measured"], REPEATABILITY), (p, after[p], errors)
 
 
-def test_every_executor_bound_is_held_to_the_measured_maximum_with_its_pessimism(loop) -> None:
-    compare = loop["compared"]["analyses"]["compare"]
+@pytest.mark.parametrize("analysis", ["compared", "again"], ids=["library-model", "profiled-model"])
+def test_every_executor_bound_is_held_to_the_measured_maximum_with_its_pessimism(loop, analysis) -> None:
+    """The library model's bounds against the first run, and the profiled model's (its execution
+    times with the middleware's share, the executor's measured dispatch latency) against the
+    second: each bound beside its measured maximum, violated exactly when below it, with its
+    pessimism; the processes analysed on the CPUs the run put them on (fewer than the model's
+    cores here), as the comparison says."""
+    compare = loop[analysis]["analyses"]["compare"]
+    if read_measurements(loop["first"]).run_value("host_cores") < 3:  # the model has 3 cores
+        assert compare["placement"] and all(g["core"].startswith("CPU ") for g in compare["placement"])
     bounds = [i for i in compare["items"] if i["quantity"] in ("executor_response_time_us", "data_age_us")]
     callbacks = {i["path"].rpartition(".")[2] for i in bounds if i["quantity"] == "executor_response_time_us"}
     assert callbacks == {
@@ -189,4 +197,4 @@ def test_every_executor_bound_is_held_to_the_measured_maximum_with_its_pessimism
         assert ratios[(item["path"], item["quantity"])] == pytest.approx(
             item["bound"] / item["measured"], rel=1e-5
         )
-    print("bound / measured:", {k[0].rpartition(".")[2] + " " + k[1]: v for k, v in ratios.items()})
+    print(analysis, "bound / measured:", {k[0].rpartition(".")[2] + " " + k[1]: v for k, v in ratios.items()})
