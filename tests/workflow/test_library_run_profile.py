@@ -16,7 +16,7 @@ from rosaadl.properties import property_value
 from rosaadl.transforms.instantiate import instantiate
 from rosaadl.workflow.library_add_profile import add_profiles
 from rosaadl.workflow.library_catalog import read_library
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+from tests.measurements_sample import tracking_measurements, tracking_measurements_text, tracking_profiled
 
 
 def _run_file(tmp_path, version=1, latencies=(), **run):
@@ -81,24 +81,6 @@ def test_a_truncated_run_is_refused_with_its_line(tmp_path, capsys) -> None:
 
 
 SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
-#: The tracking system with its camera node's profile (the PDM refines the library's process).
-PROFILED = """package tracking_profiled
-public
-  with sw_tracking, sys_tracking, nd_usb_cam_profiles;
-  system tracking_sw_profiled extends sw_tracking::tracking_sw
-  end tracking_sw_profiled;
-  system implementation tracking_sw_profiled.impl extends sw_tracking::tracking_sw.impl
-    subcomponents
-      usbcam: refined to process nd_usb_cam_profiles::usb_cam_nd.xu4_a15;
-  end tracking_sw_profiled.impl;
-  system tracking_profiled extends sys_tracking::tracking
-  end tracking_profiled;
-  system implementation tracking_profiled.impl extends sys_tracking::tracking.impl
-    subcomponents
-      rem_trk_sw: refined to system tracking_sw_profiled.impl;
-  end tracking_profiled.impl;
-end tracking_profiled;
-"""
 #: A timer thread's measured dispatch latency (µs) and one never released idle.
 LATENCIES = ({"min": 612.5, "mean": 1034.25, "max": 1842.2}, None)
 
@@ -131,7 +113,7 @@ def test_the_profiled_dispatch_latency_reaches_the_analysed_system(tmp_path, cap
     out = tmp_path / "profiles"
     add_profiles(_run_file(tmp_path, 3, LATENCIES, board="xu4", core="a15"), out)
     system = tmp_path / "tracking_profiled.aadl"
-    system.write_text(PROFILED)
+    system.write_text(tracking_profiled({"usbcam": "nd_usb_cam_profiles::usb_cam_nd.xu4_a15"}))
     inputs = [str(SYSTEMS), str(out), str(system)]
     root = "tracking_profiled::tracking_profiled.impl"
     instance = choose_instance(read_aadl_inputs([Path(i) for i in inputs]), root)  # as analyze does
