@@ -41,10 +41,14 @@ __all__ = [
 
 FORMAT = "rosaadl-measurements"
 #: The version this release writes; it reads every one of :data:`KNOWN_VERSIONS`.
-VERSION = 2
-KNOWN_VERSIONS = (1, 2)
-#: What version 2 added (a version 1 file holding one was edited by hand).
-_NEW_IN_2 = (("run", "period_scale"), ("processes", "profile"))
+VERSION = 3
+KNOWN_VERSIONS = (1, 2, 3)
+#: What each version added, as (group, member): a file of an earlier version holding one was
+#: edited by hand.
+_NEW_IN: tuple[tuple[int, tuple[tuple[str, str], ...]], ...] = (
+    (2, (("run", "period_scale"), ("processes", "profile"))),
+    (3, (("threads", "dispatch_latency_us"),)),
+)
 #: a measurements file larger than this is refused before it is read
 MAX_FILE_BYTES = 64 * 1024 * 1024
 _MAX_VALUES = 2_000_000
@@ -79,7 +83,9 @@ class Statistics:
 @dataclass(frozen=True)
 class ThreadMeasurement:
     """One thread's dispatches: release period (mean, jitter), execution time (CPU time of its
-    own thread), response time (release to end), deadline misses; times in µs."""
+    own thread), response time (release to end), deadline misses; times in µs.
+    ``dispatch_latency_us``: release to start of its timer dispatches released while its
+    executor was idle (version 3; None: not a timer thread, or no such dispatch)."""
 
     path: str
     process: str | None
@@ -90,6 +96,7 @@ class ThreadMeasurement:
     response_time_us: Statistics | None
     deadline_us: float | None
     deadline_misses: int
+    dispatch_latency_us: Statistics | None = None
 
     @property
     def load_percent(self) -> float | None:
@@ -157,23 +164,28 @@ class Measurements:
 
 
 def _order_problems(document: dict[str, Any]) -> list[tuple[str, str]]:
-    """min ≤ mean ≤ max in every statistic, and no member of a later version in a version 1
-    file (a schema cannot say it)."""
+    """min ≤ mean ≤ max in every statistic, and no member of a later version in a file of an
+    earlier one (a schema cannot say it)."""
     problems = []
-    if document.get("version") == 1:
-        for group, member in _NEW_IN_2:
+    version = document.get("version")
+    for added, members in _NEW_IN:
+        if version >= added:
+            continue
+        why = f"a member of version {added} in a version {version} file"
+        for group, member in members:
             rows = document.get(group)
             if isinstance(rows, dict) and member in rows:  # ``run``: one object
-                problems.append((f"$.{group}.{member}", "a member of version 2 in a version 1 file"))
+                problems.append((f"$.{group}.{member}", why))
             elif isinstance(rows, list):
                 problems += [
-                    (f"$.{group}[{index}].{member}", "a member of version 2 in a version 1 file")
+                    (f"$.{group}[{index}].{member}", why)
                     for index, row in enumerate(rows)
                     if isinstance(row, dict) and member in row
                 ]
     for group, key in (
         ("threads", "execution_time_us"),
         ("threads", "response_time_us"),
+        ("threads", "dispatch_latency_us"),
         ("chains", "latency_us"),
     ):
         for index, row in enumerate(document.get(group, [])):
@@ -195,6 +207,7 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
             response_time_us=Statistics.of(t["response_time_us"]),
             deadline_us=t.get("deadline_us"),
             deadline_misses=int(t["deadline_misses"]),
+            dispatch_latency_us=Statistics.of(t.get("dispatch_latency_us")),
         )
         for t in document["threads"]
     )
@@ -258,7 +271,8 @@ def parse_measurements(text: str, file: str | None = None) -> Measurements:
     ):
         raise ParseError(
             f"measurements format version {document.get('version')!r} is not known"
-            f" (this release reads {' and '.join(str(v) for v in KNOWN_VERSIONS)})",
+            f" (this release reads {', '.join(str(v) for v in KNOWN_VERSIONS[:-1])}"
+            f" and {KNOWN_VERSIONS[-1]})",
             file=file,
             path="$.version",
         )

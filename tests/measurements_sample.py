@@ -7,7 +7,7 @@ import copy
 import json
 from typing import Any
 
-__all__ = ["tracking_measurements", "tracking_measurements_text"]
+__all__ = ["tracking_measurements", "tracking_measurements_text", "tracking_profiled"]
 
 _SAMPLE: dict[str, Any] = {
     "format": "rosaadl-measurements",
@@ -76,3 +76,23 @@ def tracking_measurements() -> dict[str, Any]:
 def tracking_measurements_text(document: dict[str, Any] | None = None) -> str:
     """The sample (or ``document``) as the indented JSON text a run writes."""
     return json.dumps(tracking_measurements() if document is None else document, indent=2) + "\n"
+
+
+def tracking_profiled(refinements: dict[str, str]) -> str:
+    """The AADL text of package ``tracking_profiled``: the tracking system
+    (``tracking_profiled::tracking_profiled.impl``) whose software system refines each process
+    named in ``refinements`` to the profile's PDM given (``{"usbcam":
+    "nd_usb_cam_profiles::usb_cam_nd.xu4_a15"}``); every instance path stays the same."""
+    packages = sorted({pdm.partition("::")[0] for pdm in refinements.values()})
+    refined = "".join(f"      {name}: refined to process {pdm};\n" for name, pdm in refinements.items())
+    sw, whole = "tracking_sw_profiled", "tracking_profiled"
+    return (
+        f"package tracking_profiled\npublic\n  with sw_tracking, sys_tracking, {', '.join(packages)};\n"
+        f"  system {sw} extends sw_tracking::tracking_sw\n  end {sw};\n"
+        f"  system implementation {sw}.impl extends sw_tracking::tracking_sw.impl\n"
+        f"    subcomponents\n{refined}  end {sw}.impl;\n"
+        f"  system {whole} extends sys_tracking::tracking\n  end {whole};\n"
+        f"  system implementation {whole}.impl extends sys_tracking::tracking.impl\n"
+        f"    subcomponents\n      rem_trk_sw: refined to system {sw}.impl;\n  end {whole}.impl;\n"
+        "end tracking_profiled;\n"
+    )

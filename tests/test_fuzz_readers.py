@@ -319,9 +319,12 @@ def test_ros2_package_files_are_answered(member, tmp_path):
 
 def test_measurements_json_files_are_answered(tmp_path):
     """A measured run's ``measurements.json`` (the tracking sample, with the board and core a run
-    names) mutated: read by ``library add-profile`` and by ``analyze --compare`` of its model."""
+    names, of version 3: a timer thread's dispatch latency) mutated: read by ``library
+    add-profile`` and by ``analyze --compare`` of its model."""
     document = tracking_measurements()
+    document["version"] = 3
     document["run"].update(board="xu4", core="a15")
+    document["threads"][0]["dispatch_latency_us"] = {"min": 612.5, "mean": 1034.25, "max": 1842.2}
     seed = tracking_measurements_text(document).encode()
     source = tmp_path / "m.json"
     source.write_bytes(seed)

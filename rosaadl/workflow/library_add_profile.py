@@ -39,6 +39,7 @@ from rosaadl.workflow.library_measurements import (
 )
 from rosaadl.workflow.library_nodes import bytes_of, instance_value, ns_of, us_text
 from rosaadl.workflow.library_profiles import (
+    DISPATCH_LATENCY,
     PROFILE_SUFFIX,
     ExpectedValues,
     ProfileBuilder,
@@ -72,15 +73,28 @@ class ProfileResult:
 def _header_comment(unit: EObject, source_name: str, merged: bool) -> str:
     nodes = unit.name.removesuffix(PROFILE_SUFFIX)
     source = f"{source_name} and earlier measurements" if merged else source_name
+    if not source_name.lower().endswith(".json"):
+        carried = "-- Compute_Execution_Time, the process its SEI::MIPSBudget (= Raw_MIPS / IPC).\n\n"
+    elif _has_dispatch_latency(unit):
+        carried = (
+            "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget),\n"
+            "-- a timer thread its measured ROS_Properties::Dispatch_Latency.\n\n"
+        )
+    else:
+        carried = "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget).\n\n"
     return (
         f"-- {unit.name}: platform-dependent implementations (PDM) of the nodes\n"
         f"-- of {nodes}, made by `rosaadl library add-profile` from {source}.\n"
-        "-- Each PDM extends the node's PIM; its threads carry the measured\n"
-        + (
-            "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget).\n\n"
-            if source_name.lower().endswith(".json")
-            else "-- Compute_Execution_Time, the process its SEI::MIPSBudget (= Raw_MIPS / IPC).\n\n"
-        )
+        "-- Each PDM extends the node's PIM; its threads carry the measured\n" + carried
+    )
+
+
+def _has_dispatch_latency(unit: EObject) -> bool:
+    """Whether a classifier of ``unit`` carries a measured dispatch latency."""
+    return any(
+        (pa.property or "").lower() == DISPATCH_LATENCY.lower()
+        for classifier in unit.classifiers
+        for pa in classifier.ownedPropertyAssociations
     )
 
 
@@ -275,6 +289,15 @@ def _check_values(
                     "period_us",
                     f"thread {thread.name} of {impl.process} has the Period {period}, "
                     f"not {us_text(m.period_ns)}{overridden}",
+                )
+            )
+        latency = instance_value(thread, DISPATCH_LATENCY)
+        if m.dispatch_latency_ns is not None and ns_of(latency) != m.dispatch_latency_ns:
+            errors.append(
+                m.error(
+                    "dispatch_latency_us",
+                    f"thread {thread.name} of {impl.process} does not carry {DISPATCH_LATENCY} => "
+                    f"{us_text(m.dispatch_latency_ns)} (it has {latency}){overridden}",
                 )
             )
         if item.port is not None and m.data_size is not None:

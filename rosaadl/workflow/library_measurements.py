@@ -96,6 +96,9 @@ class Measurement:
     data_size: int | None
     processor: str | None
     columns: tuple[tuple[str, int], ...] = ()
+    #: the executor's measured dispatch latency, whole µs in ns (a measured run's
+    #: ``dispatch_latency_us`` max, rounded up); None: not measured (no CSV column gives it)
+    dispatch_latency_ns: int | None = None
 
     @property
     def pdm(self) -> str:

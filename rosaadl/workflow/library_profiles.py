@@ -18,6 +18,9 @@
         Compute_Execution_Time => 6100 us .. 6100 us;
     end imagePublisher.le376_atom;
 
+A measured run (``measurements.json``) gives a timer thread's PDM its measured executor latency
+too, ``ROS_Properties::Dispatch_Latency => 1843 us;`` (:data:`DISPATCH_LATENCY`).
+
 The package names the node's types with ``renames`` (an implementation is declared in the
 package of its type or of an alias of it). A package of earlier profiles keeps what it holds
 except the PDMs measured again. The packages are models only: writing them is
@@ -51,6 +54,7 @@ from rosaadl.workflow.library_nodes import (
 
 __all__ = [
     "PROFILE_SUFFIX",
+    "DISPATCH_LATENCY",
     "ProfiledImplementation",
     "ExpectedValues",
     "ProfileBuilder",
@@ -59,6 +63,8 @@ __all__ = [
 
 #: The profiles of the nodes of package ``P`` go to package ``P`` + this suffix.
 PROFILE_SUFFIX = "_profiles"
+#: The property a thread PDM of a measured run gets its executor's dispatch latency in.
+DISPATCH_LATENCY = "ROS_Properties::Dispatch_Latency"
 
 _DATA_PORTS = ("dataPort", "eventDataPort")
 
@@ -345,6 +351,8 @@ class ProfileBuilder:
             )
         if len(self.errors) > before or node_alias is None:
             return None
+        if any(r.m.dispatch_latency_ns is not None for r in rows) and "ROS_Properties" not in withs:
+            withs.append("ROS_Properties")
         budget = first.mips_budget
         properties = []
         if budget is not None:  # a run without hardware counters measures no instruction rate
@@ -390,6 +398,8 @@ class ProfileBuilder:
         m = row.m
         instance = row.node.instances.get((row.sub.name or "").lower())
         properties = [_association("Compute_Execution_Time", _time_range(m.cet_ns))]
+        if m.dispatch_latency_ns is not None:
+            properties.append(_association(DISPATCH_LATENCY, _time(m.dispatch_latency_ns)))
         pim_period = ns_of(instance_value(instance, "Period"))
         if m.period_ns is not None and pim_period != m.period_ns:
             properties.append(_association("Period", _time(m.period_ns)))

@@ -20,6 +20,9 @@ per measured thread with a dispatch:
   share (the process's load over its callbacks' load, both measured at the scaled rates) do not
   depend on the scale;
 * ``Data_Size``: the bytes per message of the one topic the thread publishes, when measured;
+* ``ROS_Properties::Dispatch_Latency``: the max of the thread's ``dispatch_latency_us`` (a
+  timer thread's latency from its release to its start while its executor was idle, version 3),
+  rounded up to a whole µs, when measured;
 * no ``Raw_MIPS``, ``IPC`` or ``MIPSBudget``: a run without hardware counters measures no
   instruction rate, and the library leaves out what was not measured.
 
@@ -28,6 +31,7 @@ Rows are numbered after ``$.threads`` (row 1 is ``$.threads[0]``) and located at
 
 from __future__ import annotations
 
+import math
 import re
 
 from rosaadl.errors import Diagnostic, Location, ParseError, RosaadlError
@@ -38,6 +42,8 @@ from rosaadl.workflow.library_measurements import Measurement, MeasurementError
 __all__ = ["run_measurement_rows", "node_cet_share"]
 
 _PART = re.compile(r"[A-Za-z0-9](?:_?[A-Za-z0-9])*\Z")
+#: a dispatch latency above this (µs, about 31 years) is refused: the model's times are 64-bit ns
+_MAX_LATENCY_US = 10**15
 
 
 def node_cet_share(measurements: Measurements) -> dict[str, float]:
@@ -122,6 +128,16 @@ def run_measurement_rows(
                 )
             )
             continue
+        latency = thread.dispatch_latency_us
+        if latency is not None and latency.max > _MAX_LATENCY_US:
+            at = f"{where}.dispatch_latency_us.max"
+            errors.append(
+                MeasurementError(
+                    f"{at[2:]}: {latency.max:g} us is out of range (at most {_MAX_LATENCY_US} us)",
+                    Location(file=file, line=lines.get(at, lines.get(where, 1)), path=at),
+                )
+            )
+            continue
         process = thread.process or thread.path.rpartition(".")[0]
         published = sizes.get(thread.path, [])
         rows.append(
@@ -139,6 +155,7 @@ def run_measurement_rows(
                 ipc=None,
                 data_size=published[0] if len(published) == 1 else None,
                 processor=None,
+                dispatch_latency_ns=None if latency is None else math.ceil(latency.max) * 1000,
             )
         )
-    return rows, errors, notes
+    return ([] if errors else rows), errors, notes

@@ -8,7 +8,12 @@ import pytest
 
 from rosaadl.errors import ParseError
 from rosaadl.importers.json_schema import schema_problems, value_lines
-from rosaadl.importers.measurements import measurements_schema, parse_measurements, read_measurements
+from rosaadl.importers.measurements import (
+    Statistics,
+    measurements_schema,
+    parse_measurements,
+    read_measurements,
+)
 from tests.measurements_sample import tracking_measurements, tracking_measurements_text
 
 
@@ -32,7 +37,7 @@ def test_the_sample_reads_into_typed_rows(tmp_path) -> None:
 
 def test_the_schema_is_versioned_and_documents_every_member() -> None:
     schema = measurements_schema()
-    assert schema["properties"]["version"] == {"enum": [1, 2]}
+    assert schema["properties"]["version"] == {"enum": [1, 2, 3]}
     assert set(schema["$defs"]) >= {"thread", "process", "topic", "chain", "statistics"}
 
 
@@ -92,6 +97,30 @@ def test_a_hand_edited_value_is_refused_at_its_json_path_and_line() -> None:
             "$.processes[0].profile",
             "missing 'core'",
         ),
+        # what version 3 added, in a version 1 or 2 file, or edited wrong
+        (
+            lambda d: d["threads"][1].update(dispatch_latency_us=_LATENCY),
+            "$.threads[1].dispatch_latency_us",
+            "a member of version 3 in a version 1 file",
+        ),
+        (
+            lambda d: d.update(version=2) or d["threads"][0].update(dispatch_latency_us=None),
+            "$.threads[0].dispatch_latency_us",
+            "a member of version 3 in a version 2 file",
+        ),
+        (
+            lambda d: (
+                d.update(version=3)
+                or d["threads"][0].update(dispatch_latency_us={"min": 900.0, "mean": 1000.0, "max": 800.0})
+            ),
+            "$.threads[0].dispatch_latency_us",
+            "min <= mean <= max",
+        ),
+        (
+            lambda d: d.update(version=3) or d["threads"][0].update(dispatch_latency_us={"min": -1}),
+            "$.threads[0].dispatch_latency_us",
+            "missing 'mean'",
+        ),
     ],
 )
 def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
@@ -106,8 +135,8 @@ def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
 
 def test_an_unknown_version_is_named() -> None:
     document = tracking_measurements()
-    document["version"] = 3
-    with pytest.raises(ParseError, match="version 3 is not known"):
+    document["version"] = 4
+    with pytest.raises(ParseError, match=r"version 4 is not known \(this release reads 1, 2 and 3\)"):
         parse_measurements(json.dumps(document))
 
 
@@ -119,6 +148,38 @@ def test_version_2_records_the_period_scale_and_the_profile_of_each_process() ->
     read = parse_measurements(tracking_measurements_text(document))
     assert read.period_scale == 1.9
     assert read.processes[0].profile == ("xu4", "a15") and read.processes[1].profile is None
+
+
+_LATENCY = {"min": 612.5, "mean": 1034.25, "max": 4871.2}
+
+
+def test_version_3_records_the_dispatch_latency_of_timer_threads() -> None:
+    document = tracking_measurements()
+    document["version"] = 3
+    document["threads"][0]["dispatch_latency_us"] = _LATENCY
+    document["threads"][1]["dispatch_latency_us"] = None  # a timer thread never released idle
+    read = parse_measurements(tracking_measurements_text(document))
+    assert read.threads[0].dispatch_latency_us == Statistics(612.5, 1034.25, 4871.2)
+    assert read.threads[1].dispatch_latency_us is None
+
+
+def test_a_version_2_file_still_reads_without_dispatch_latencies() -> None:
+    document = tracking_measurements()
+    document["version"] = 2
+    read = parse_measurements(tracking_measurements_text(document))
+    assert [t.dispatch_latency_us for t in read.threads] == [None, None]
+
+
+def test_a_version_3_member_in_a_version_2_file_is_refused_at_its_line() -> None:
+    document = tracking_measurements()
+    document["version"] = 2
+    document["threads"][1]["dispatch_latency_us"] = _LATENCY
+    text = tracking_measurements_text(document)
+    with pytest.raises(ParseError) as caught:
+        parse_measurements(text, "m.json")
+    where = caught.value.location
+    assert (where.file, where.path) == ("m.json", "$.threads[1].dispatch_latency_us")
+    assert text.splitlines()[where.line - 1].strip() == '"dispatch_latency_us": {'
 
 
 def test_a_version_1_file_still_reads_unscaled() -> None:

@@ -3,22 +3,29 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
+import rosaadl.library
 from rosaadl.cli import main
+from rosaadl.cli.inputs import choose_instance, read_aadl_inputs
 from rosaadl.errors import ParseError, RosaadlError
 from rosaadl.model import find_instance
 from rosaadl.properties import property_value
 from rosaadl.transforms.instantiate import instantiate
 from rosaadl.workflow.library_add_profile import add_profiles
 from rosaadl.workflow.library_catalog import read_library
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+from tests.measurements_sample import tracking_measurements, tracking_measurements_text, tracking_profiled
 
 
-def _run_file(tmp_path, **run):
+def _run_file(tmp_path, version=1, latencies=(), **run):
+    """The sample run; ``latencies``: the ``dispatch_latency_us`` of its threads (version 3)."""
     document = tracking_measurements()
+    document["version"] = version
     document["run"].update(run)
+    for thread, latency in zip(document["threads"], latencies, strict=False):
+        thread["dispatch_latency_us"] = latency
     target = tmp_path / "measurements.json"
     target.write_text(tracking_measurements_text(document))
     return target
@@ -71,3 +78,65 @@ def test_a_truncated_run_is_refused_with_its_line(tmp_path, capsys) -> None:
     document = json.loads(capsys.readouterr().out)
     assert code == 1 and document["errors"][0]["file"] == str(target)
     assert not (tmp_path / "p").exists()
+
+
+SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
+#: A timer thread's measured dispatch latency (µs) and one never released idle.
+LATENCIES = ({"min": 612.5, "mean": 1034.25, "max": 1842.2}, None)
+
+
+def test_a_measured_dispatch_latency_becomes_the_thread_pdm_s_rounded_up_max(tmp_path) -> None:
+    out = tmp_path / "profiles"
+    add_profiles(_run_file(tmp_path, 3, LATENCIES, board="xu4", core="a15"), out)
+    usb = (out / "nd_usb_cam_profiles.aadl").read_text()
+    assert "  with nd_usb_cam, ROS_Properties, Exynos_5422;" in usb
+    assert (
+        "  thread implementation imagePublisher.xu4_a15 extends nd_usb_cam::imagePublisher.impl\n"
+        "    properties\n"
+        "      Compute_Execution_Time => 2700540 ns .. 2700540 ns;\n"
+        "      ROS_Properties::Dispatch_Latency => 1843 us;\n"
+    ) in usb
+    assert "-- a timer thread its measured ROS_Properties::Dispatch_Latency." in usb
+    # a null latency (and a file of version 1 or 2) writes nothing of it
+    pos = (out / "nd_pos_to_cmd_profiles.aadl").read_text()
+    assert "Dispatch_Latency" not in pos and "ROS_Properties" not in pos
+
+
+def test_a_run_of_an_earlier_version_writes_no_dispatch_latency(tmp_path) -> None:
+    out = tmp_path / "profiles"
+    add_profiles(_run_file(tmp_path, 2, board="xu4", core="a15"), out)
+    usb = (out / "nd_usb_cam_profiles.aadl").read_text()
+    assert "Dispatch_Latency" not in usb and "ROS_Properties" not in usb
+
+
+def test_the_profiled_dispatch_latency_reaches_the_analysed_system(tmp_path, capsys) -> None:
+    out = tmp_path / "profiles"
+    add_profiles(_run_file(tmp_path, 3, LATENCIES, board="xu4", core="a15"), out)
+    system = tmp_path / "tracking_profiled.aadl"
+    system.write_text(tracking_profiled({"usbcam": "nd_usb_cam_profiles::usb_cam_nd.xu4_a15"}))
+    inputs = [str(SYSTEMS), str(out), str(system)]
+    root = "tracking_profiled::tracking_profiled.impl"
+    instance = choose_instance(read_aadl_inputs([Path(i) for i in inputs]), root)  # as analyze does
+    camera = find_instance(instance, "rem_trk_sw.usbcam.image_broadcaster")
+    assert property_value(camera, "ROS_Properties::Dispatch_Latency").to("us") == 1843
+    command = find_instance(instance, "rem_trk_sw.poscmd.cmd_publisher")
+    assert property_value(command, "ROS_Properties::Dispatch_Latency") is None  # not profiled
+    code = main(["--format", "json", "analyze", *inputs, "--root", root, "--only", "executor"])
+    report = json.loads(capsys.readouterr().out)
+    assert code == 0 and report["ok"], report["errors"]
+    callback = next(
+        c
+        for c in report["analyses"]["executor"]["callbacks"]
+        if c["path"].endswith("usbcam.image_broadcaster")
+    )
+    assert callback["kind"] == "timer" and callback["wcrt"] >= 2700.54
+
+
+def test_an_out_of_range_dispatch_latency_is_refused_at_its_path(tmp_path) -> None:
+    huge = {"min": 1.0, "mean": 2.0, "max": 1e300}
+    target = _run_file(tmp_path, 3, (huge,), board="xu4", core="a15")
+    with pytest.raises(RosaadlError) as caught:
+        add_profiles(target, tmp_path / "profiles")
+    where = caught.value.location
+    assert where.path == "$.threads[0].dispatch_latency_us.max" and where.line is not None
+    assert not (tmp_path / "profiles").exists()

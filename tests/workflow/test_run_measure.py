@@ -13,6 +13,7 @@ from rosaadl.workflow.run.measure import (
     ChainPlan,
     chain_latencies,
     chain_plans,
+    idle_dispatch_latencies,
     measurements_document,
     process_core,
     process_cpu_seconds,
@@ -28,6 +29,7 @@ class Node:
     name: str
     path: str
     parameters: list = field(default_factory=list)
+    timers: list | None = None  # the plan's threads on a periodic timer (None: an older plan)
 
     @property
     def full_name(self) -> str:
@@ -141,6 +143,9 @@ def test_the_document_validates_and_holds_threads_processes_topics_chains(traces
     assert read.topics[0].port == "top_Instance.sw.cam.camera_thread.out"
     assert read.topics[0].bandwidth_bytes_per_s == 6400.0
     assert read.chains[0].samples == 5 and read.chains[0].latency_us.mean == 7000.0
+    assert document["version"] == 3
+    # a plan that does not say which threads run on a timer: no dispatch latency is claimed
+    assert all("dispatch_latency_us" not in row for row in document["threads"])
 
 
 def test_a_window_keeps_only_the_dispatches_inside_it(traces) -> None:
@@ -153,3 +158,79 @@ def test_proc_gives_this_process_s_cpu_time_and_affinity() -> None:
     assert process_cpu_seconds(2**22 + 12345) is None
     cores = os.sched_getaffinity(0)
     assert process_core(os.getpid()) == (next(iter(cores)) if len(cores) == 1 else None)
+
+
+US = 1000  # ns
+
+
+@pytest.fixture
+def executor_trace(tmp_path):
+    """One process: ``tick`` on a 10 ms timer, ``sub`` dispatched by messages (its recorded
+    release is read after its start, as the generated code does). Times in ns from 1 s."""
+    t0 = 1000 * MS
+    lines = ["N /exe", "T tick ticker", "T sub listener"]
+    tick = [
+        (0, 800 * US),  # idle: 800 us
+        (10 * MS, 10 * MS + 600 * US),  # sub runs from 9.5 to 10.5 ms: not idle
+        (20 * MS, 20 * MS + 500 * US),  # sub starts at 20.1 ms, before this start: not idle
+        (30 * MS, 31 * MS + 500 * US),  # idle: 1500 us
+        (40 * MS, 40 * MS + 300 * US),  # sub runs from 39 to 40 ms, to the release: not idle
+    ]
+    for release, start in tick:
+        lines.append(f"D tick {t0 + release} {t0 + start} {t0 + start + 2 * MS} {2 * MS}")
+    listener = [
+        (9 * MS + 500 * US, 10 * MS + 500 * US),
+        (20 * MS + 100 * US, 20 * MS + 300 * US),
+        (39 * MS, 40 * MS),
+    ]
+    for start, end in listener:
+        lines.append(f"D sub {t0 + start + 5 * US} {t0 + start} {t0 + end} {end - start}")
+    _write(tmp_path, "exe", lines)
+    return tmp_path
+
+
+def _exe_rows(folder, timers, window=None):
+    document = measurements_document(
+        nodes=[Node("exe", "top_Instance.sw.exe", [("tick.period", 0.01)], timers)],
+        traces=read_traces(folder, window),
+        cpu_load={},
+        cores={},
+        topics=[],
+        chains=[],
+        run={},
+    )
+    parse_measurements(json.dumps(document))  # it validates
+    return {row["path"].rpartition(".")[2]: row for row in document["threads"]}
+
+
+def test_a_timer_thread_s_dispatch_latency_counts_only_releases_of_an_idle_executor(executor_trace) -> None:
+    rows = _exe_rows(executor_trace, ["tick"])
+    assert rows["ticker"]["dispatch_latency_us"] == {"min": 800.0, "mean": 1150.0, "max": 1500.0}
+    # a subscription's recorded release is its start: it has no dispatch latency
+    assert "dispatch_latency_us" not in rows["listener"]
+
+
+def test_a_release_during_another_dispatch_or_before_another_start_is_not_idle() -> None:
+    spans = [(100, 200), (300, 400), (1000, 1100)]
+    dispatches = [
+        (150, 250, 260, 1),  # released while (100, 200) runs
+        (260, 350, 360, 1),  # (300, 400) started between the release and this start
+        (200, 240, 250, 1),  # released at the very end of (100, 200): still running
+        (500, 900, 950, 1),  # idle
+        (1200, 1200, 1300, 5),  # released at its start (a message's entry): none
+        (1210, 1205, 1300, 5),  # released after its start (a subscription): none
+    ]
+    spans += [(start, end) for _release, start, end, _cpu in dispatches]
+    assert idle_dispatch_latencies(dispatches, spans) == [0.4]
+
+
+def test_a_timer_thread_never_released_idle_has_a_null_latency(executor_trace) -> None:
+    rows = _exe_rows(executor_trace, ["tick", "sub"])  # even a "timer" whose releases follow its starts
+    assert rows["listener"]["dispatch_latency_us"] is None
+
+
+def test_a_dispatch_left_out_of_the_window_still_keeps_the_executor_busy(executor_trace) -> None:
+    # the window starts at 1009.6 ms: sub's dispatch from 9.5 ms is left out (released before),
+    # but it runs at tick's release at 10 ms
+    rows = _exe_rows(executor_trace, ["tick"], (1009 * MS + 600 * US, 2000 * MS))
+    assert rows["ticker"]["dispatch_latency_us"] == {"min": 1500.0, "mean": 1500.0, "max": 1500.0}

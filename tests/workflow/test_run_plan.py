@@ -158,6 +158,8 @@ def test_rates_follow_the_dispatching_ports():
     assert [n.full_name for n in plan.nodes] == ["/source", "/robot/relay", "/server", "/loop", "/component"]
     relay_launch = plan.nodes[1]
     assert (relay_launch.cpus, relay_launch.policy, relay_launch.priority) == ([3], "SCHED_FIFO", 40)
+    # the threads a periodic timer dispatches (their traced release is the timer's due time)
+    assert [n.timers for n in plan.nodes] == [["tick"], ["mixed"], [], [], ["timer"]]
 
 
 def test_plan_round_trips_through_the_run_folder(tmp_path):
@@ -166,6 +168,15 @@ def test_plan_round_trips_through_the_run_folder(tmp_path):
     again = load_plan(tmp_path)
     assert again == plan
     assert again.topics[0].model_rate_hz == 2.0
+    assert again.nodes[0].timers == ["t"]
+
+
+def test_a_plan_written_before_the_timers_were_kept_still_loads(tmp_path):
+    plan = run_plan(_plan(_node("n", _thread("t", "periodic", _port("o", "out")), periods=[("t", 0.5)])))
+    document = plan.as_json()
+    del document["nodes"][0]["timers"]
+    (tmp_path / "rosaadl-run.json").write_text(json.dumps(document))
+    assert load_plan(tmp_path).nodes[0].timers is None
 
 
 def test_the_model_chains_are_kept_in_the_plan_so_a_rerun_of_the_folder_measures_them(tmp_path):

@@ -11,7 +11,9 @@ every node is up to the stop) count.
 
 * per thread: dispatches, period mean and jitter (max − min of the release intervals),
   execution time (CPU time of the dispatch's own thread), response time (release to end),
-  deadline misses (the node's ``<thread>.deadline`` parameter);
+  deadline misses (the node's ``<thread>.deadline`` parameter); for a thread on a periodic
+  timer, its dispatch latency (:func:`idle_dispatch_latencies`: release to start of the
+  dispatches released while its executor was idle);
 * per process: CPU load, the CPU time of its threads over the window (the scheduler's count of
   each thread, ``/proc/PID/task/TID/schedstat``, in ns; ``/proc/PID/stat``'s user + system
   time, in 10 ms ticks, where the kernel keeps no such count) and the core it was bound to
@@ -35,6 +37,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rosaadl.importers.measurements import FORMAT, VERSION
+
 __all__ = [
     "TRACE_FOLDER",
     "MEASUREMENTS_FILE",
@@ -49,6 +53,7 @@ __all__ = [
     "process_core",
     "measurements_document",
     "chain_plans",
+    "idle_dispatch_latencies",
 ]
 
 #: The folder of the run folder the nodes write their traces into.
@@ -73,6 +78,9 @@ class NodeTrace:
     threads: dict[str, str] = field(default_factory=dict)  # ident -> thread path below the process
     ports: dict[str, str] = field(default_factory=dict)  # topic -> port path below the process
     dispatches: dict[str, list[tuple[int, int, int, int]]] = field(default_factory=dict)
+    #: (start, end) of the dispatches that overlap the window but are not in it (their release
+    #: or end lies outside): they kept the executor busy at the window's edges
+    edges: list[tuple[int, int]] = field(default_factory=list)
     published: dict[tuple[str, int], int] = field(default_factory=dict)  # (topic, seq) -> dispatch start
     received: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)  # topic -> (recv, seq, pub)
     bad_lines: int = 0
@@ -106,6 +114,8 @@ def read_trace(path: Path, window: tuple[int, int] | None = None) -> NodeTrace:
                 release, start, end, cpu = (int(p) for p in parts[2:])
                 if low <= release and end <= high:
                     trace.dispatches.setdefault(parts[1], []).append((release, start, end, cpu))
+                elif end >= low and start <= high:
+                    trace.edges.append((start, end))
             elif kind == "P" and len(parts) == 5:
                 trace.published[(parts[1], int(parts[2]))] = int(parts[4])
             elif kind == "R" and len(parts) == 5:
@@ -182,7 +192,42 @@ def _stats(values: list[float]) -> dict[str, float] | None:
     }
 
 
-def _thread_row(process_path: str, thread: str, events: list, deadline_s: float | None) -> dict[str, Any]:
+def idle_dispatch_latencies(
+    dispatches: Iterable[tuple[int, int, int, int]], spans: Iterable[tuple[int, int]]
+) -> list[float]:
+    """Start − release in µs of each of ``dispatches`` (``(release, start, end, cpu)`` in ns)
+    that its timer released while its executor was idle: its release precedes its start (the
+    generated code reads a timer's due time before the dispatch starts, a message's or request's
+    entry after: such a dispatch has none), no other dispatch of ``spans`` (``(start, end)`` of
+    every dispatch of the process, these included) was running at the release (its
+    ``[start, end]`` holds it) and none started between the release and this start. What is
+    left is the executor's own latency (waking up, its wait set, taking the timer, handing it to
+    a thread), not the wait for another callback: ``ROS_Properties::Dispatch_Latency``."""
+    ordered = sorted(spans)
+    starts = [start for start, _end in ordered]
+    latest_end = list(itertools.accumulate((end for _start, end in ordered), max))
+    out = []
+    for release, start, _end, _cpu in dispatches:
+        if release >= start:
+            continue
+        before = bisect.bisect_left(starts, release)  # the spans that started before the release
+        if before and latest_end[before - 1] >= release:
+            continue  # another dispatch was running at the release
+        if bisect.bisect_left(starts, start) > before:
+            continue  # another dispatch started between the release and this start
+        out.append((start - release) / 1000)
+    return out
+
+
+def _thread_row(
+    process_path: str,
+    thread: str,
+    events: list,
+    deadline_s: float | None,
+    spans: list[tuple[int, int]] | None = None,
+) -> dict[str, Any]:
+    """One thread's row; ``spans``: ``(start, end)`` of every dispatch of its process when the
+    thread runs on a periodic timer (its dispatch latency is measured), else None."""
     events = sorted(events)
     releases = [e[0] for e in events]
     gaps = [(b - a) / 1000 for a, b in itertools.pairwise(releases)]
@@ -201,6 +246,8 @@ def _thread_row(process_path: str, thread: str, events: list, deadline_s: float 
     }
     if deadline_us:
         row["deadline_us"] = round(deadline_us, 3)
+    if spans is not None:
+        row["dispatch_latency_us"] = _stats(idle_dispatch_latencies(events, spans))
     return row
 
 
@@ -253,7 +300,8 @@ def measurements_document(
     profiles: dict[str, tuple[str, str]] | None = None,
 ) -> dict[str, Any]:
     """The ``measurements.json`` document of a run: ``nodes`` are the plan's
-    :class:`~rosaadl.workflow.run.plan.NodeLaunch` (full name, process path, parameters),
+    :class:`~rosaadl.workflow.run.plan.NodeLaunch` (full name, process path, parameters, the
+    threads on a periodic timer: only these get a ``dispatch_latency_us``),
     ``cpu_load``, ``cores`` and ``profiles`` (the board and core a profile of the process is
     named after, :mod:`~rosaadl.workflow.run.profiles`) by node full name, ``topics`` the run's
     topic results. ``run.board`` and ``run.core`` are set when every process has the same."""
@@ -277,10 +325,21 @@ def measurements_document(
             continue
         for topic, port in trace.ports.items():
             ports.setdefault(topic, f"{node.path}.{port}")
+        timers = set(getattr(node, "timers", None) or ())
+        spans = [(start, end) for events in trace.dispatches.values() for _r, start, end, _c in events]
+        spans += trace.edges
         for ident, thread in sorted(trace.threads.items(), key=lambda item: item[1]):
             deadline = parameters.get(f"{ident}.deadline")
             deadline_s = float(deadline) if isinstance(deadline, (int, float)) and deadline else None
-            threads.append(_thread_row(node.path, thread, trace.dispatches.get(ident, []), deadline_s))
+            threads.append(
+                _thread_row(
+                    node.path,
+                    thread,
+                    trace.dispatches.get(ident, []),
+                    deadline_s,
+                    spans if ident in timers else None,
+                )
+            )
     topic_rows = []
     for topic in topics:
         size = topic.bytes_per_message
@@ -311,7 +370,7 @@ def measurements_document(
     if len(named) == 1 and all("profile" in p for p in processes):
         board, core = named.pop()
         run = {**run, "board": board, "core": core}
-    document: dict[str, Any] = {"format": "rosaadl-measurements", "version": 2}
+    document: dict[str, Any] = {"format": FORMAT, "version": VERSION}
     if root:
         document["model"] = {"root": root}
     document.update(

@@ -73,6 +73,9 @@ class NodeLaunch:
     policy: str = ""  # SCHED_FIFO | SCHED_RR | "" (as the launch prefix writes it)
     priority: int | None = None
     profile: list[str] | None = None  # [board, core] of the PDM it is in the model (see .profiles)
+    #: the threads (idents) dispatched by a periodic timer: the release their trace records is
+    #: the timer's due time (see :mod:`.measure`); None: a plan written before it was kept
+    timers: list[str] | None = None
 
     @property
     def full_name(self) -> str:
@@ -154,6 +157,7 @@ def run_plan(plan: WorkspacePlan) -> RunPlan:
                 policy=node.policy if node.priority is not None else "",
                 priority=node.priority,
                 profile=_listed(model_profile(plan.root, node.path)),
+                timers=[t.ident for t in node.cls.threads if t.dispatches and t.timer == "periodic"],
             )
         )
         full = result.nodes[-1].full_name
