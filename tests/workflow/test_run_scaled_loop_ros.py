@@ -25,6 +25,7 @@ from ros_runtime import runtime_marks
 
 import rosaadl.library
 from rosaadl.importers.measurements import read_measurements
+from tests.measurements_sample import tracking_profiled
 
 pytestmark = [*runtime_marks(), pytest.mark.slow]
 
@@ -43,25 +44,13 @@ SCALE = 3.0
 
 #: The tracking system with the profiled nodes, in its own package (the profiles' PDMs refine
 #: the processes of the library's system; every instance path stays the same).
-PROFILED = """package tracking_profiled
-public
-  with sw_tracking, sys_tracking, nd_usb_cam_profiles, nd_ocv_color_tracking_profiles, nd_pos_to_cmd_profiles;
-  system tracking_sw_profiled extends sw_tracking::tracking_sw
-  end tracking_sw_profiled;
-  system implementation tracking_sw_profiled.impl extends sw_tracking::tracking_sw.impl
-    subcomponents
-      usbcam: refined to process nd_usb_cam_profiles::usb_cam_nd.xu4_a15;
-      tracker: refined to process nd_ocv_color_tracking_profiles::ocv_color_tracking_nd.xu4_a15;
-      poscmd: refined to process nd_pos_to_cmd_profiles::pos_to_cmd_nd.xu4_a7;
-  end tracking_sw_profiled.impl;
-  system tracking_profiled extends sys_tracking::tracking
-  end tracking_profiled;
-  system implementation tracking_profiled.impl extends sys_tracking::tracking.impl
-    subcomponents
-      rem_trk_sw: refined to system tracking_sw_profiled.impl;
-  end tracking_profiled.impl;
-end tracking_profiled;
-"""
+PROFILED = tracking_profiled(
+    {
+        "usbcam": "nd_usb_cam_profiles::usb_cam_nd.xu4_a15",
+        "tracker": "nd_ocv_color_tracking_profiles::ocv_color_tracking_nd.xu4_a15",
+        "poscmd": "nd_pos_to_cmd_profiles::pos_to_cmd_nd.xu4_a7",
+    }
+)
 
 
 def _rosaadl(*args: str, timeout: int = 600) -> dict:
