@@ -11,14 +11,16 @@ per measured thread with a dispatch:
 * the PDM ``<board>_<core>``: the process's ``processes[].profile`` (what ``rosaadl run`` writes:
   the PDM it emulated, else this machine, see :mod:`rosaadl.workflow.run.profiles`), else the
   run's ``run.board`` and ``run.core`` (then required);
-* the execution time: the thread's mean CPU time per dispatch, plus its share of what its
-  process spent beyond its callbacks (executor, serialization, DDS), in proportion to its own
-  CPU time, so that the PDM's Σ CET / Period is the node's measured CPU load, as a profile of a
-  whole node measures it;
+* the execution time: the thread's mean CPU time per dispatch, plus its process's CPU time per
+  dispatch beyond its callbacks (executor, serialization, DDS), the same for every dispatch of
+  the process (:func:`middleware_per_dispatch`: rclpy's executor spends about the same on each
+  dispatch, waking up, making a wait set, taking and handing over), so that the PDM's
+  Σ CET / Period is the node's measured CPU load, as a profile of a whole node measures it, and
+  each callback's execution time carries the executor work its own dispatches cause, as the
+  executor analysis's busy windows need;
 * the Period: the PIM's; nothing is written. A run with scaled periods (``run.period_scale``)
   gives the same profile as an unscaled one: the CPU time of a dispatch and the middleware's
-  share (the process's load over its callbacks' load, both measured at the scaled rates) do not
-  depend on the scale;
+  CPU time per dispatch (both measured at the scaled rates) do not depend on the scale;
 * ``Data_Size``: the bytes per message of the one topic the thread publishes, when measured;
 * ``ROS_Properties::Dispatch_Latency``: the max of the thread's ``dispatch_latency_us`` (a
   timer thread's latency from its release to its start while its executor was idle, version 3),
@@ -39,28 +41,32 @@ from rosaadl.importers.json_schema import value_lines
 from rosaadl.importers.measurements import Measurements, parse_measurements
 from rosaadl.workflow.library_measurements import Measurement, MeasurementError
 
-__all__ = ["run_measurement_rows", "node_cet_share"]
+__all__ = ["run_measurement_rows", "middleware_per_dispatch"]
 
 _PART = re.compile(r"[A-Za-z0-9](?:_?[A-Za-z0-9])*\Z")
 #: a dispatch latency above this (µs, about 31 years) is refused: the model's times are 64-bit ns
 _MAX_LATENCY_US = 10**15
 
 
-def node_cet_share(measurements: Measurements) -> dict[str, float]:
-    """Per thread path: the factor its mean CPU time is multiplied by so that its process's
-    threads add up to the process's measured CPU load (1 where the process is not measured or
-    spent no more than its callbacks)."""
+def middleware_per_dispatch(measurements: Measurements) -> dict[str, float]:
+    """Per thread path: the CPU time (µs) its process spends per dispatch beyond its callbacks
+    (executor, serialization, DDS): the process's measured load less its threads' loads, divided
+    evenly among the dispatches of all its threads with a period (rclpy's executor spends about
+    the same on each: waking up, making a wait set, taking the timer or message, handing it
+    over); 0 where the process is not measured or spent no more than its callbacks."""
     loads: dict[str, float] = {}
+    rates: dict[str, float] = {}
     for thread in measurements.threads:
-        if thread.load_percent is not None:
+        if thread.load_percent is not None and thread.period_mean_us:
             key = thread.process or thread.path.rpartition(".")[0]
             loads[key] = loads.get(key, 0.0) + thread.load_percent
-    factor = {}
+            rates[key] = rates.get(key, 0.0) + 1e6 / thread.period_mean_us  # dispatches per second
+    cost: dict[str, float] = {}
     for process in measurements.processes:
-        own = loads.get(process.path, 0.0)
-        if own > 0:
-            factor[process.path] = max(1.0, process.cpu_load_percent / own)
-    return {t.path: factor.get(t.process or t.path.rpartition(".")[0], 1.0) for t in measurements.threads}
+        beyond = process.cpu_load_percent - loads.get(process.path, 0.0)
+        if beyond > 0 and rates.get(process.path):
+            cost[process.path] = beyond / 100 * 1e6 / rates[process.path]  # µs of CPU per dispatch
+    return {t.path: cost.get(t.process or t.path.rpartition(".")[0], 0.0) for t in measurements.threads}
 
 
 def run_measurement_rows(
@@ -111,7 +117,7 @@ def run_measurement_rows(
         or p.path.rpartition(".")[2]
         for p in measurements.processes
     }
-    share = node_cet_share(measurements)
+    middleware = middleware_per_dispatch(measurements)
     sizes: dict[str, list[int | None]] = {}
     for topic in measurements.topics:
         if topic.port:
@@ -150,7 +156,7 @@ def run_measurement_rows(
                 board=named.get(process, (board, core))[0],
                 core=named.get(process, (board, core))[1],
                 period_ns=None,
-                cet_ns=max(1, round(thread.execution_time_us.mean * share[thread.path] * 1000)),
+                cet_ns=max(1, round((thread.execution_time_us.mean + middleware[thread.path]) * 1000)),
                 mips_raw=None,
                 ipc=None,
                 data_size=published[0] if len(published) == 1 else None,

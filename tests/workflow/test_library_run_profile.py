@@ -140,3 +140,46 @@ def test_an_out_of_range_dispatch_latency_is_refused_at_its_path(tmp_path) -> No
     where = caught.value.location
     assert where.path == "$.threads[0].dispatch_latency_us.max" and where.line is not None
     assert not (tmp_path / "profiles").exists()
+
+
+def test_the_middleware_is_charged_evenly_to_every_dispatch_of_the_node(tmp_path) -> None:
+    """The tracker: its image callback (37 ms every 100 ms) and its point timer (0.2 ms every
+    300 ms) take 37.07 % of a CPU, the node 41.3 %: the 4.23 % beyond, 42 333 µs of CPU a second
+    over 13.33 dispatches a second, is 3175 µs per dispatch, added to each callback's mean (the
+    executor's wake-up, wait set and hand-over cost about the same for either); the profile's
+    Σ CET / Period is the node's measured load."""
+    document = tracking_measurements()
+    document["threads"] += [
+        {
+            "path": f"rem_trk_sw.tracker.{name}",
+            "process": "rem_trk_sw.tracker",
+            "dispatches": 10,
+            "period_us": {"mean": period, "jitter": 0.0},
+            "execution_time_us": {"min": cet, "mean": cet, "max": cet},
+            "response_time_us": {"min": cet, "mean": cet, "max": cet},
+            "deadline_misses": 0,
+        }
+        for name, period, cet in (
+            ("image_tracker", 100_000.0, 37_000.0),
+            ("point_broadcaster", 300_000.0, 200.0),
+        )
+    ]
+    document["processes"].append(
+        {"path": "rem_trk_sw.tracker", "node": "ocv_color_tracking", "cpu_load_percent": 41.3, "core": 1}
+    )
+    document["run"].update(board="xu4", core="a15")
+    run = tmp_path / "measurements.json"
+    run.write_text(tracking_measurements_text(document))
+    add_profiles(run, tmp_path / "profiles")
+    instance = instantiate(
+        read_library([tmp_path / "profiles"]), "nd_ocv_color_tracking_profiles::ocv_color_tracking_nd.xu4_a15"
+    )
+    per_dispatch = (41.3 - 37.0 - 200 / 3000) / 100 * 1e6 / (10 + 10 / 3)
+    assert per_dispatch == pytest.approx(3175.0)
+    load = 0.0
+    for name, period, cet in (("image_tracker", 100_000, 37_000), ("point_broadcaster", 300_000, 200)):
+        thread = find_instance(instance, name)
+        profiled = property_value(thread, "Compute_Execution_Time").maximum.to("us")
+        assert profiled == pytest.approx(cet + per_dispatch, abs=0.001)
+        load += profiled / period * 100
+    assert load == pytest.approx(41.3, rel=1e-6)
