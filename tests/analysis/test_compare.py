@@ -170,7 +170,13 @@ def test_executor_bounds_follow_the_cores_the_run_put_the_processes_on(tracking)
     assert not apart.placement and "placement" not in apart.as_dict()
     document = tracking_measurements()
     document["processes"][1]["core"] = 0
-    together = _compare(tracking, document, only="sched,executor,compare").result("compare")
+    report = _compare(tracking, document, only="sched,executor,compare")
+    together = report.result("compare")
+    html, _data = render_report(tracking, report)
+    assert (
+        "The executor bounds are those of the processes on the cores the run used\n"
+        "  (CPU 0: rem_trk_sw.usbcam, rem_trk_sw.poscmd)." in html
+    )
     shared = together.item("rem_trk_sw.poscmd.cmd_publisher", "executor_response_time_us").bound
     assert shared > alone
     assert together.as_dict()["placement"] == [

@@ -114,11 +114,15 @@ def test_the_text_names_the_scale_and_the_pessimism(tmp_path, capsys) -> None:
             "compare",
             "--compare",
             str(_scaled_run(tmp_path, 1.9)),
+            "--html",
+            str(tmp_path / "out"),
         ]
     )
     text = capsys.readouterr().out
     assert "the model with its periods × 1.9, as the run scaled them" in text
     assert "bound/measured" in text
+    html = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    assert "The model with its periods × 1.9, as the run scaled them." in html
 
 
 def test_each_bus_s_total_is_the_measured_bandwidth_of_the_topics_bound_to_it(unscaled) -> None:
