@@ -514,7 +514,8 @@ def _placement_groups(placement: dict[str, str]) -> tuple[tuple[str, tuple[str, 
     cores: dict[str, list[str]] = {}
     for path, core in placement.items():
         cores.setdefault(core, []).append(path)
-    return tuple((core, tuple(paths)) for core, paths in sorted(cores.items()))
+    ordered = sorted(cores.items(), key=lambda item: (len(item[0]), item[0]))  # CPU 2 before CPU 10
+    return tuple((core, tuple(paths)) for core, paths in ordered)
 
 
 def _run(context: AnalysisContext) -> ComparisonResult:
