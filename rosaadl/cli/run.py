@@ -34,26 +34,6 @@ def _rate(value: float | None) -> str:
     return "-" if value is None else f"{value:g} Hz"
 
 
-def _chains(instance, plan) -> list:
-    """The model's end-to-end flows (the latency analysis's asynchronous chains) as topic chains
-    between the plan's nodes."""
-    from rosaadl.analysis import run_analyses
-    from rosaadl.workflow.run.measure import chain_plans
-
-    latency = run_analyses(instance, "latency").result("latency")
-    flows = (
-        [] if latency is None else [(c.name, list(c.threads)) for c in latency.chains if c.mode == "async"]
-    )
-    return chain_plans(plan.nodes, plan.topics, flows)
-
-
-def _planned_chains(plan) -> list:
-    """The chains kept in the run plan, as the measurement traces them."""
-    from rosaadl.workflow.run.measure import ChainPlan
-
-    return [ChainPlan(c["name"], tuple(tuple(hop) for hop in c["topics"])) for c in plan.chains]
-
-
 @click.command("run")
 @inputs_argument
 @root_option("The system implementation to run (or the instance to take).")
@@ -123,16 +103,14 @@ def command(
 ) -> None:
     """Build and run the generated ROS 2 nodes for S seconds; report what each topic carried."""
     from rosaadl.workflow.run import PLAN_FILE, RunError, RunOptions, load_plan, prepare_run, run_application
+    from rosaadl.workflow.run.measure import planned_chains
     from rosaadl.workflow.run.period_scale import parse_period_scale
-    from rosaadl.workflow.run.plan import save_plan
 
     try:
         scale = parse_period_scale(period_scale)
     except RunError as exc:
         raise UsageError(exc.message) from None
     report = Report()
-    chains: list = []
-    model_root = None
     if len(inputs) == 1 and inputs[0].is_dir() and (inputs[0] / PLAN_FILE).is_file():
         folder = inputs[0]
         if out is not None and out.resolve() != folder.resolve():
@@ -141,9 +119,6 @@ def command(
             raise UsageError("a run folder holds one application: leave out --root", file=str(folder))
         plan = load_plan(folder)
         options.progress(f"running the run folder {folder} ({plan.model})")
-        if measure:
-            chains = _planned_chains(plan)
-            model_root = plan.model
     else:
         folder = out if out is not None else DEFAULT_RUN_DIR
         if folder.exists() and not folder.is_dir():
@@ -157,13 +132,6 @@ def command(
             instance, folder, rosmod_trace=rosmod_trace, options=GenerationOptions(app_name=app_name)
         )
         report.note([*loaded.warnings, *generated.diagnostics])
-        plan.chains = [
-            {"name": c.name, "topics": [list(hop) for hop in c.topics]} for c in _chains(instance, plan)
-        ]
-        save_plan(plan, folder)  # with its chains, so that a run of the folder measures them too
-        if measure:
-            chains = _planned_chains(plan)
-            model_root = plan.model
         options.progress(
             f"generated {len(generated.written)} file(s) into {folder / 'src'} "
             f"({len(plan.nodes)} node(s), {len(plan.topics)} topic(s))"
@@ -179,8 +147,8 @@ def command(
                 build=not no_build,
                 measure=measure,
                 warm_up=warm_up if measure else 0.0,
-                chains=tuple(chains),
-                root=model_root,
+                chains=tuple(planned_chains(plan)) if measure else (),  # kept in the plan
+                root=plan.model if measure else None,
                 period_scale=scale,
             ),
             progress=options.progress,

@@ -236,6 +236,25 @@ def test_tracking_plan_has_the_launch_files_nodes(tmp_path):
     json.dumps(plan.as_json())
 
 
+def test_a_prepared_run_folder_keeps_the_model_chains(tmp_path):
+    """``prepare_run`` saves the tracking flow as the topics it crosses between the nodes."""
+    from rosaadl.importers.aadl_text import read_files
+    from rosaadl.transforms.instantiate import instantiate
+    from rosaadl.workflow.run import prepare_run
+
+    instance = instantiate(read_files([]), "sys_tracking::tracking.impl")
+    prepare_run(instance, tmp_path)
+    assert load_plan(tmp_path).chains == [
+        {
+            "name": "rem_trk_sw.etef_tracking",
+            "topics": [
+                ["/usb_cam/image_raw", "/usb_cam", "/ocv_color_tracking"],
+                ["/ocv_color_tracking/point_out", "/ocv_color_tracking", "/pos_to_cmd"],
+            ],
+        }
+    ]
+
+
 def test_the_monitor_keeps_off_the_cpus_of_the_nodes_work():
     from rosaadl.workflow.run.cores import Machine, quietest_cpus
     from rosaadl.workflow.run.monitor import monitor_command

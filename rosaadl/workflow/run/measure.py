@@ -53,6 +53,7 @@ __all__ = [
     "process_core",
     "measurements_document",
     "chain_plans",
+    "planned_chains",
     "idle_dispatch_latencies",
 ]
 
@@ -377,6 +378,11 @@ def measurements_document(
         {"run": run, "threads": threads, "processes": processes, "topics": topic_rows, "chains": chain_rows}
     )
     return document
+
+
+def planned_chains(plan: Any) -> list[ChainPlan]:
+    """The chains a run plan keeps (``RunPlan.chains``), as the measurement traces them."""
+    return [ChainPlan(c["name"], tuple(tuple(hop) for hop in c["topics"])) for c in plan.chains]
 
 
 def chain_plans(

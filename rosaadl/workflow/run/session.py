@@ -38,6 +38,7 @@ from rosaadl.errors import Diagnostic, Location
 from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generate_workspace
 from rosaadl.workflow.run.cores import Machine, machine, node_prefix, quietest_cpus, shared_cpus
 from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
+from rosaadl.workflow.run.measure import ChainPlan, chain_plans
 from rosaadl.workflow.run.measured_window import MeasuredWindow
 from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
 from rosaadl.workflow.run.period_scale import auto_period_scale, predicted_cpu_loads, scaled_plan
@@ -160,11 +161,26 @@ def prepare_run(
     rosmod_trace: EObject | None = None,
     options: GenerationOptions | None = None,
 ) -> tuple[RunPlan, GenerationResult]:
-    """Generate the workspace of ``instance`` into ``folder/src`` and save its run plan."""
+    """Generate the workspace of ``instance`` into ``folder/src`` and save its run plan, with the
+    model's chains (:func:`model_chains`) so that any run of the folder can measure them."""
     result = generate_workspace(instance, folder / "src", rosmod_trace=rosmod_trace, options=options)
     plan = run_plan(result.plan)
+    chains = model_chains(instance, plan)
+    plan.chains = [{"name": c.name, "topics": [list(hop) for hop in c.topics]} for c in chains]
     save_plan(plan, folder)
     return plan, result
+
+
+def model_chains(instance: EObject, plan: RunPlan) -> list[ChainPlan]:
+    """The model's end-to-end flows (the latency analysis's asynchronous chains) as topic chains
+    between the plan's nodes."""
+    from rosaadl.analysis import run_analyses
+
+    latency = run_analyses(instance, "latency").result("latency")
+    flows = (
+        [] if latency is None else [(c.name, list(c.threads)) for c in latency.chains if c.mode == "async"]
+    )
+    return chain_plans(plan.nodes, plan.topics, flows)
 
 
 def _diagnostic(severity: str, message: str, path: str | None = None, file: str | None = None) -> Diagnostic:
