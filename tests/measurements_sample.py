@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import json
+from pathlib import Path
 from typing import Any
 
 __all__ = ["tracking_measurements", "tracking_measurements_text", "tracking_profiled"]
@@ -76,6 +77,13 @@ def tracking_measurements() -> dict[str, Any]:
 def tracking_measurements_text(document: dict[str, Any] | None = None) -> str:
     """The sample (or ``document``) as the indented JSON text a run writes."""
     return json.dumps(tracking_measurements() if document is None else document, indent=2) + "\n"
+
+
+def write_tracking_measurements(folder: Path, document: dict[str, Any] | None = None) -> Path:
+    """``folder/measurements.json`` holding the sample (or ``document``), as a run writes it."""
+    target = Path(folder) / "measurements.json"
+    target.write_text(tracking_measurements_text(document), encoding="utf-8")
+    return target
 
 
 def tracking_profiled(refinements: dict[str, str]) -> str:

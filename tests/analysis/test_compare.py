@@ -15,7 +15,11 @@ from rosaadl.exporters.report import render_report
 from rosaadl.importers.aadl_text import read_files
 from rosaadl.importers.measurements import parse_measurements
 from rosaadl.transforms.instantiate import instantiate
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+from tests.measurements_sample import (
+    tracking_measurements,
+    tracking_measurements_text,
+    write_tracking_measurements,
+)
 
 SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
 ROOT = "sys_tracking::tracking.impl"
@@ -129,8 +133,7 @@ def _analyze_json(capsys, *args: str) -> tuple[int, dict]:
 
 
 def test_cli_compare_in_json_exits_1_on_a_violated_bound(tmp_path, capsys) -> None:
-    target = tmp_path / "measurements.json"
-    target.write_text(tracking_measurements_text())
+    target = write_tracking_measurements(tmp_path)
     code, document = _analyze_json(capsys, "--only", "cpu", "--compare", str(target))
     assert code == 1
     assert set(document["analyses"]) == {"cpu", "compare"}

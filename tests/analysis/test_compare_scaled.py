@@ -12,7 +12,10 @@ import pytest
 
 import rosaadl.library
 from rosaadl.cli import main
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+from tests.measurements_sample import (
+    tracking_measurements,
+    write_tracking_measurements,
+)
 
 SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
 ROOT = "sys_tracking::tracking.impl"
@@ -24,8 +27,7 @@ def _scaled_run(tmp_path, scale: float) -> Path:
     document["run"]["period_scale"] = scale
     for thread in document["threads"]:
         thread["period_us"]["mean"] *= scale
-    target = tmp_path / "measurements.json"
-    target.write_text(tracking_measurements_text(document))
+    target = write_tracking_measurements(tmp_path, document)
     return target
 
 

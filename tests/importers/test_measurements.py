@@ -14,12 +14,15 @@ from rosaadl.importers.measurements import (
     parse_measurements,
     read_measurements,
 )
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+from tests.measurements_sample import (
+    tracking_measurements,
+    tracking_measurements_text,
+    write_tracking_measurements,
+)
 
 
 def test_the_sample_reads_into_typed_rows(tmp_path) -> None:
-    target = tmp_path / "measurements.json"
-    target.write_text(tracking_measurements_text())
+    target = write_tracking_measurements(tmp_path)
     read = read_measurements(target)
     assert read.root == "sys_tracking::tracking.impl"
     assert [t.path for t in read.threads] == [

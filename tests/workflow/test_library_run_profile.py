@@ -16,7 +16,11 @@ from rosaadl.properties import property_value
 from rosaadl.transforms.instantiate import instantiate
 from rosaadl.workflow.library_add_profile import add_profiles
 from rosaadl.workflow.library_catalog import read_library
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text, tracking_profiled
+from tests.measurements_sample import (
+    tracking_measurements,
+    tracking_profiled,
+    write_tracking_measurements,
+)
 
 
 def _run_file(tmp_path, version=1, latencies=(), **run):
@@ -26,8 +30,7 @@ def _run_file(tmp_path, version=1, latencies=(), **run):
     document["run"].update(run)
     for thread, latency in zip(document["threads"], latencies, strict=False):
         thread["dispatch_latency_us"] = latency
-    target = tmp_path / "measurements.json"
-    target.write_text(tracking_measurements_text(document))
+    target = write_tracking_measurements(tmp_path, document)
     return target
 
 
@@ -58,8 +61,7 @@ def test_the_profiled_node_predicts_the_measured_process_load(tmp_path) -> None:
 
 def test_a_run_without_board_and_core_is_refused_at_run(tmp_path) -> None:
     document = tracking_measurements()
-    target = tmp_path / "measurements.json"
-    target.write_text(tracking_measurements_text(document))
+    target = write_tracking_measurements(tmp_path, document)
     out = tmp_path / "profiles"
     with pytest.raises(RosaadlError) as caught:
         add_profiles(target, out)
@@ -168,8 +170,7 @@ def test_the_middleware_is_charged_evenly_to_every_dispatch_of_the_node(tmp_path
         {"path": "rem_trk_sw.tracker", "node": "ocv_color_tracking", "cpu_load_percent": 41.3, "core": 1}
     )
     document["run"].update(board="xu4", core="a15")
-    run = tmp_path / "measurements.json"
-    run.write_text(tracking_measurements_text(document))
+    run = write_tracking_measurements(tmp_path, document)
     add_profiles(run, tmp_path / "profiles")
     instance = instantiate(
         read_library([tmp_path / "profiles"]), "nd_ocv_color_tracking_profiles::ocv_color_tracking_nd.xu4_a15"

@@ -19,7 +19,10 @@ from rosaadl.transforms.instantiate import instantiate
 from rosaadl.workflow.library_add_profile import add_profiles
 from rosaadl.workflow.run.measure import cpu_seconds_between, measurements_document, thread_cpu_ns
 from rosaadl.workflow.run.profiles import host_profile, model_profile, run_profile
-from tests.measurements_sample import tracking_measurements, tracking_measurements_text
+from tests.measurements_sample import (
+    tracking_measurements,
+    write_tracking_measurements,
+)
 from tests.workflow.test_run_measure import NODES, TOPICS
 
 SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
@@ -74,8 +77,7 @@ def _run_file(tmp_path, profiles) -> Path:
     document["version"] = 2
     for process, profile in zip(document["processes"], profiles, strict=True):
         process["profile"] = profile
-    target = tmp_path / "measurements.json"
-    target.write_text(tracking_measurements_text(document))
+    target = write_tracking_measurements(tmp_path, document)
     return target
 
 
