@@ -151,28 +151,29 @@ class _Reader:
         self.props = PropertyReader(diagnostics)
         self.mode = mode
 
-    def inherited(self, obj: Any, name: str) -> Any:
+    @staticmethod
+    def _nearest(obj: Any, read: Any) -> Any:
+        """``read(component)`` of ``obj``, else of the nearest component around it that has it."""
         current = obj
         while current is not None:
-            value = self.props.enum(current, name, self.mode) or self.props.value(current, name, self.mode)
+            value = read(current)
             if value is not None:
                 return value
             current = current.eContainer()
         return None
+
+    def inherited(self, obj: Any, name: str) -> Any:
+        return self._nearest(
+            obj, lambda c: self.props.enum(c, name, self.mode) or self.props.value(c, name, self.mode)
+        )
 
     def us(self, obj: Any, name: str) -> Fraction | None:
         value = self.props.seconds(obj, name, self.mode)
         return value * _US if value is not None else None
 
     def inherited_us(self, obj: Any, name: str) -> Fraction | None:
-        """``name`` (a time) on ``obj``, else on the nearest component around it that has it."""
-        current = obj
-        while current is not None:
-            value = self.us(current, name)
-            if value is not None:
-                return value
-            current = current.eContainer()
-        return None
+        """``name`` (a time, µs) on ``obj``, else on the nearest component around it that has it."""
+        return self._nearest(obj, lambda c: self.us(c, name))
 
     def kind(self, thread: Any) -> str | None:
         stated = self.props.enum(thread, "ROS_Properties::Thread_Kind", self.mode)
