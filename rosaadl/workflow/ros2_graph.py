@@ -18,7 +18,11 @@ type has no fixed size (the project property ``Data_Size:<pkg/Type>``, which
 
 The graph's own infrastructure (``/rosout``, ``/parameter_events``, the parameter services
 every node offers, hidden nodes such as the ``ros2`` daemon's, whose names start with ``_``) is
-left out. What the graph cannot say (the host of each node, the execution
+left out. So is what a ROSMOD model cannot hold, each with a warning on its node: a managed
+(lifecycle) node's lifecycle services and ``transition_event`` topic (the node itself is
+kept), an action (its server's or client's hidden ``<action>/_action/…`` services and topics,
+named once as the action and its ``pkg/action/Type``), and any other hidden topic or service
+(a name with a part that starts with ``_``). What the graph cannot say (the host of each node, the execution
 times) is a warning: bind the model to a board and give profiles afterwards. A node that leaves
 during discovery, a topic announced with two types, a topic too quiet to measure: located
 warnings (the node's or topic's name as the path). No node at all: an error.
@@ -57,6 +61,8 @@ __all__ = [
     "STEADY",
     "STEADY_SHARE",
     "INFRASTRUCTURE_TOPICS",
+    "hidden",
+    "action_of",
 ]
 
 #: Topics every ROS 2 node has; not part of the application.
@@ -71,6 +77,19 @@ _NODE_SERVICES = (
     "set_parameters_atomically",
     "get_type_description",
 )
+#: What a managed (lifecycle) node offers besides its application: services, then its topic.
+_LIFECYCLE_SERVICES = (
+    "change_state",
+    "get_state",
+    "get_available_states",
+    "get_available_transitions",
+    "get_transition_graph",
+)
+_LIFECYCLE_TOPIC = "transition_event"
+#: The part of a name that makes it an action's own service or topic.
+_ACTION = "/_action/"
+#: What an action's type is suffixed with in the names of its services and topics.
+_ACTION_SUFFIXES = ("_SendGoal", "_GetResult", "_FeedbackMessage")
 _TOPIC_KINDS = ("Publisher", "Subscriber")
 #: A topic is periodic when :data:`STEADY_SHARE` of its inter-arrival times are within this share
 #: of their median (:func:`steady_period`).
@@ -105,6 +124,28 @@ def _full_name(name: str, namespace: str) -> str:
 
 def _infrastructure(name: str, node: str) -> bool:
     return name in INFRASTRUCTURE_TOPICS or any(name == f"{node}/{s}" for s in _NODE_SERVICES)
+
+
+def _lifecycle(name: str, node: str) -> bool:
+    return name == f"{node}/{_LIFECYCLE_TOPIC}" or any(name == f"{node}/{s}" for s in _LIFECYCLE_SERVICES)
+
+
+def hidden(name: str) -> bool:
+    """ROS 2's rule for a hidden topic, service or node: a part of its name starts with ``_``."""
+    return any(part.startswith("_") for part in name.split("/"))
+
+
+def action_of(name: str, type_name: str) -> tuple[str, str | None] | None:
+    """``(action, pkg/action/Type)`` when ``name`` is one of an action's own services or topics
+    (``/fibonacci/_action/send_goal`` of type ``pkg/action/Fibonacci_SendGoal``), None when it is
+    not; the type is None for the names typed by ``action_msgs`` (``cancel_goal``, ``status``)."""
+    action, found, _rest = name.partition(_ACTION)
+    if not found:
+        return None
+    for suffix in _ACTION_SUFFIXES:
+        if type_name.endswith(suffix) and "/action/" in type_name:
+            return action, type_name[: -len(suffix)]
+    return action, None
 
 
 def _qos(infos: list[Any], name: str, namespace: str) -> dict[str, str]:
@@ -157,9 +198,24 @@ class _Observer:
             self.warn(f"the node left the graph during discovery ({exc.__class__.__name__}); left out", full)
             return None
         fact = NodeFact(key=full, node_name=name, namespace=namespace, location=Location(path=full))
+        managed = False
+        actions: dict[tuple[str, str], str | None] = {}
         for kind, entries in lists.items():
             for topic, types in sorted(entries):
                 if _infrastructure(topic, full):
+                    continue
+                if _lifecycle(topic, full):
+                    managed = True
+                    continue
+                action = action_of(topic, types[0] if len(types) == 1 else "")
+                if action is not None:
+                    role = "server" if kind in ("Server", "Publisher") else "client"
+                    name_type = actions.get((role, action[0]))
+                    actions[(role, action[0])] = name_type or action[1]
+                    continue
+                if hidden(topic):
+                    noun = "topic" if kind in _TOPIC_KINDS else "service"
+                    self.warn(f"hidden {noun} {topic} ({', '.join(types)}): left out", full)
                     continue
                 if len(types) != 1:
                     self.warn(
@@ -174,6 +230,15 @@ class _Observer:
                 fact.ports.append(
                     PortFact(kind, ros_type(types[0]), topic, Location(path=f"{full} {topic}"), qos)
                 )
+        if managed:
+            self.warn(
+                "a managed (lifecycle) node: its lifecycle services and transition_event topic are "
+                "left out (a ROSMOD model has no lifecycle states)",
+                full,
+            )
+        for (role, action), type_name in sorted(actions.items()):
+            typed = f" ({type_name})" if type_name else ""
+            self.warn(f"action {role} {action}{typed}: a ROSMOD model has no actions; left out", full)
         return fact
 
     def read(self) -> None:

@@ -22,6 +22,7 @@ from rosaadl.workflow import ros2_graph
 NODES = """
 import sys
 import rclpy
+from rclpy.lifecycle import LifecycleNode
 from rclpy.node import Node
 from rcl_interfaces.srv import GetParameters
 from std_msgs.msg import Int32, String
@@ -51,6 +52,12 @@ class Mixed(Node):
         self.c = self.create_client(GetParameters, '/demo/lookup')
 
 
+class Managed(LifecycleNode):
+    def __init__(self):
+        super().__init__('managed', namespace='/demo')
+        self.create_subscription(String, 'chatter', lambda msg: None, 10)
+
+
 class MixedToo(Node):
     def __init__(self):
         super().__init__('mixed_too')
@@ -59,7 +66,7 @@ class MixedToo(Node):
 
 rclpy.init()
 # one DDS participant refuses a second type on a topic: the other type comes from another process
-nodes = [MixedToo()] if sys.argv[1:] == ['other'] else [Talker(), Listener(), Mixed()]
+nodes = [MixedToo()] if sys.argv[1:] == ['other'] else [Talker(), Listener(), Mixed(), Managed()]
 executor = rclpy.executors.SingleThreadedExecutor()
 for node in nodes:
     executor.add_node(node)
@@ -129,10 +136,10 @@ def test_live_graph_nodes_topics_services_rates_and_sizes(graph, tmp_path):
         except ImportFormatError:
             continue
         comps = _components(project)
-        if len(comps) == 4:
+        if len(comps) == 5:
             break
     assert time.monotonic() - started < 60
-    assert sorted(comps) == ["listener", "mixed", "mixed_too", "talker"]
+    assert sorted(comps) == ["listener", "managed", "mixed", "mixed_too", "talker"]
     assert _ports(comps["talker"]) == [("Publisher", "std_msgs/String", "/demo/chatter")]
     assert _ports(comps["listener"]) == [
         ("Server", "rcl_interfaces/GetParameters", "/demo/lookup"),
@@ -140,6 +147,8 @@ def test_live_graph_nodes_topics_services_rates_and_sizes(graph, tmp_path):
     ]
     assert _ports(comps["mixed"]) == [("Client", "rcl_interfaces/GetParameters", "/demo/lookup")]
     assert _ports(comps["mixed_too"]) == []
+    # a managed node keeps its own ports; its lifecycle services and topic are named, left out
+    assert _ports(comps["managed"]) == [("Subscriber", "std_msgs/String", "/demo/chatter")]
     qos = {p.key: p.value for p in comps["talker"].properties}
     assert (qos["demo_chatter.Reliability"], qos["demo_chatter.Durability"]) == ("reliable", "volatile")
     # the 50 ms publisher gets a timer within 10 % of its period
@@ -151,6 +160,7 @@ def test_live_graph_nodes_topics_services_rates_and_sizes(graph, tmp_path):
     messages = [w.message for w in warnings]
     assert any("disagree on its type" in m for m in messages)
     assert any("host" in m and "profiles" in m for m in messages)
+    assert [w.location.path for w in warnings if "lifecycle" in w.message] == ["/demo/managed"]
     # the model converts to AADL: the talker's port joined to the listener's
     from rosaadl.transforms import rosmod_to_aadl
 
@@ -238,6 +248,62 @@ def test_a_topic_with_two_types_is_left_out_with_a_located_warning():
     assert facts.nodes["/a"].ports == [] and facts.nodes["/b"].ports == []
     paths = sorted(w.location.path for w in warnings)
     assert paths == ["/a", "/t"]
+
+
+def test_actions_lifecycle_and_hidden_names_are_left_out_each_named_once_on_its_node():
+    """As rclpy's graph API gives them: an action server's and client's hidden services and
+    topics, a managed node's lifecycle interface, a hidden topic."""
+    fib = "tut/action/Fibonacci"
+    facts, warnings = _observe(
+        {
+            "/server": {
+                "pub": [
+                    ("/fib/_action/feedback", [f"{fib}_FeedbackMessage"]),
+                    ("/fib/_action/status", ["action_msgs/msg/GoalStatusArray"]),
+                    ("/server/transition_event", ["lifecycle_msgs/msg/TransitionEvent"]),
+                    ("/odom", ["nav_msgs/msg/Odometry"]),
+                ],
+                "srv": [
+                    ("/fib/_action/cancel_goal", ["action_msgs/srv/CancelGoal"]),
+                    ("/fib/_action/get_result", [f"{fib}_GetResult"]),
+                    ("/fib/_action/send_goal", [f"{fib}_SendGoal"]),
+                    ("/server/change_state", ["lifecycle_msgs/srv/ChangeState"]),
+                    ("/server/get_state", ["lifecycle_msgs/srv/GetState"]),
+                    ("/server/get_transition_graph", ["lifecycle_msgs/srv/GetAvailableTransitions"]),
+                ],
+            },
+            "/client": {
+                "sub": [
+                    ("/fib/_action/feedback", [f"{fib}_FeedbackMessage"]),
+                    ("/fib/_action/status", ["action_msgs/msg/GoalStatusArray"]),
+                    ("/_debug/state", ["std_msgs/msg/String"]),
+                ],
+                "cli": [
+                    ("/fib/_action/cancel_goal", ["action_msgs/srv/CancelGoal"]),
+                    ("/fib/_action/send_goal", [f"{fib}_SendGoal"]),
+                ],
+            },
+        }
+    )
+    assert [(p.kind, p.topic) for p in facts.nodes["/server"].ports] == [("Publisher", "/odom")]
+    assert facts.nodes["/client"].ports == []
+    assert sorted((w.location.path, w.message) for w in warnings) == [
+        ("/client", "action client /fib (tut/action/Fibonacci): a ROSMOD model has no actions; left out"),
+        ("/client", "hidden topic /_debug/state (std_msgs/msg/String): left out"),
+        ("/server", "a managed (lifecycle) node: its lifecycle services and transition_event topic "
+         "are left out (a ROSMOD model has no lifecycle states)"),
+        ("/server", "action server /fib (tut/action/Fibonacci): a ROSMOD model has no actions; left out"),
+    ]  # fmt: skip
+
+
+def test_an_actions_name_and_type_from_each_of_its_services_and_topics():
+    assert ros2_graph.action_of("/ns/fib/_action/send_goal", "p/action/Fib_SendGoal") == (
+        "/ns/fib",
+        "p/action/Fib",
+    )
+    assert ros2_graph.action_of("/fib/_action/status", "action_msgs/msg/GoalStatusArray") == ("/fib", None)
+    assert ros2_graph.action_of("/fib/action/send_goal", "p/action/Fib_SendGoal") is None
+    assert ros2_graph.hidden("/a/_b") and ros2_graph.hidden("/_a") and not ros2_graph.hidden("/a_b/c_")
 
 
 def test_no_rclpy_is_a_clear_error_and_exit_1(monkeypatch, tmp_path, capsys):
