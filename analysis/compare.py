@@ -443,12 +443,19 @@ class _Comparison:
             result = analyze_executors(
                 self.root, schedulability=self.context.result("sched"), placement=self.placement
             )
+        untimed = self.callbacks_without_execution_times(result.callbacks)
         for callback in result.callbacks:
             measured = self.thread(callback.path)
             if measured is None or measured.response_time_us is None or callback.wcrt is None:
                 continue
-            bound = callback.wcrt
-            self.add(callback.path, "executor_response_time_us", bound, measured.response_time_us.max, bound)
+            bound = None if callback.path in untimed else callback.wcrt
+            self.add(
+                callback.path,
+                "executor_response_time_us",
+                callback.wcrt,
+                measured.response_time_us.max,
+                bound,
+            )
         for chain in result.chains:
             found = [
                 (key, c)
@@ -460,6 +467,31 @@ class _Comparison:
             key, measured = found[0]
             self.used.add(("chain", key))
             self.add(key, "data_age_us", chain.data_age, measured.latency_us.max, chain.data_age)
+
+    def callbacks_without_execution_times(self, callbacks: Any) -> set[str]:
+        """The measured callbacks whose thread has no Compute_Execution_Time: the analysis counts
+        their execution as 0, so their bound is an estimate, not a claim to hold a run to (a
+        warning says so)."""
+        untimed = set()
+        for callback in callbacks:
+            key = _below_root(callback.path, self.name)
+            if self.thread(callback.path) is None:
+                continue
+            try:
+                thread = find_instance(self.root, key)
+            except RosaadlError:
+                continue
+            if thread is not None and property_value(thread, "Compute_Execution_Time") is None:
+                untimed.add(callback.path)
+                self.diagnostics.append(
+                    Diagnostic(
+                        "warning",
+                        "executor bound not held to the run: the model gives the callback no "
+                        "Compute_Execution_Time (counted as 0); profile its node (library add-profile)",
+                        Location(path=callback.path),
+                    )
+                )
+        return untimed
 
     def unmatched(self) -> None:
         for kind, table_ in (

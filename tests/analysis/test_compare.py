@@ -200,3 +200,43 @@ def test_executor_bounds_follow_the_cores_the_run_put_the_processes_on(tracking)
     unpinned = _compare(tracking, document, only="sched,executor,compare").result("compare")
     assert not unpinned.placement
     assert unpinned.item("rem_trk_sw.poscmd.cmd_publisher", "executor_response_time_us").bound == alone
+
+
+def test_executor_bounds_of_callbacks_without_execution_times_are_not_held_to_the_run(
+    corpus, tmp_path
+) -> None:
+    """A ROSMOD project gives no execution times: the executor analysis counts them as 0, so a
+    callback's own bound is no claim; the comparison shows the estimate beside the run, holds no
+    bound, and says why, instead of calling every measured response time a violation."""
+    converted = tmp_path / "aadl"
+    assert (
+        main(["-q", "convert", str(corpus / "rosmod/textual-v0.3/client-server"), "-o", str(converted)]) == 0
+    )
+    instance = instantiate(read_files([converted]), "Benchmark_deployment::Benchmark.impl")
+    process = "Benchmark_impl_Instance.Client_Node"
+    document = {
+        "format": "rosaadl-measurements",
+        "version": 1,
+        "model": {"root": "Benchmark_deployment::Benchmark.impl"},
+        "run": {"duration_s": 8.0, "emulate": True, "host_cores": 2},
+        "threads": [
+            {
+                "path": f"{process}.Client.client_timer",
+                "process": process,
+                "dispatches": 2,
+                "period_us": {"mean": 5000000.0, "jitter": 0.0},
+                "execution_time_us": {"min": 68.6, "mean": 98.9, "max": 129.1},
+                "response_time_us": {"min": 1056.5, "mean": 1187.0, "max": 1317.5},
+                "deadline_misses": 0,
+            }
+        ],
+        "processes": [{"path": process, "node": "client_node", "cpu_load_percent": 0.093}],
+        "topics": [],
+        "chains": [],
+    }
+    report = _compare(instance, document, only="sched,executor,compare")
+    item = report.result("compare").item("Client_Node.Client.client_timer", "executor_response_time_us")
+    assert (item.predicted, item.measured, item.bound, item.violated) == (0, 1317.5, None, False)
+    assert [d.location.path for d in report.diagnostics if "not held to the run" in d.message] == [
+        f"{process}.Client.client_timer"
+    ]
