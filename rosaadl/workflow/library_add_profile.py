@@ -246,6 +246,15 @@ def _verify(
         raise file_error(errors)
 
 
+def _instance_at(instance: EObject, path: str) -> EObject | None:
+    """The component instance at the dotted ``path`` below ``instance`` (names case-blind)."""
+    for name in path.lower().split("."):
+        instance = next((c for c in instance.componentInstances if (c.name or "").lower() == name), None)
+        if instance is None:
+            return None
+    return instance
+
+
 def _check_values(
     instance: EObject, impl: ProfiledImplementation, expected: list[ExpectedValues]
 ) -> list[RosaadlError]:
@@ -266,9 +275,7 @@ def _check_values(
         )
     for item in expected:
         m = item.m
-        thread = next(
-            (c for c in instance.componentInstances if (c.name or "").lower() == item.thread.lower()), None
-        )
+        thread = _instance_at(instance, item.thread)
         if thread is None:
             errors.append(m.error("thread", f"{impl.process} has no thread {item.thread}"))
             continue
@@ -278,7 +285,7 @@ def _check_values(
             errors.append(
                 m.error(
                     "cet_us",
-                    f"thread {thread.name} of {impl.process} does not carry Compute_Execution_Time => "
+                    f"thread {item.thread} of {impl.process} does not carry Compute_Execution_Time => "
                     f"{us_text(m.cet_ns)} .. {us_text(m.cet_ns)} (it has {cet}){overridden}",
                 )
             )
@@ -287,7 +294,7 @@ def _check_values(
             errors.append(
                 m.error(
                     "period_us",
-                    f"thread {thread.name} of {impl.process} has the Period {period}, "
+                    f"thread {item.thread} of {impl.process} has the Period {period}, "
                     f"not {us_text(m.period_ns)}{overridden}",
                 )
             )
@@ -296,7 +303,7 @@ def _check_values(
             errors.append(
                 m.error(
                     "dispatch_latency_us",
-                    f"thread {thread.name} of {impl.process} does not carry {DISPATCH_LATENCY} => "
+                    f"thread {item.thread} of {impl.process} does not carry {DISPATCH_LATENCY} => "
                     f"{us_text(m.dispatch_latency_ns)} (it has {latency}){overridden}",
                 )
             )
@@ -309,7 +316,7 @@ def _check_values(
                 errors.append(
                     m.error(
                         "data_size_bytes",
-                        f"port {item.port} of thread {thread.name} of {impl.process} has the Data_Size "
+                        f"port {item.port} of thread {item.thread} of {impl.process} has the Data_Size "
                         f"{size}, not {m.data_size} Bytes{overridden}",
                     )
                 )

@@ -61,6 +61,8 @@ _PART = re.compile(r"[A-Za-z0-9](?:_?[A-Za-z0-9])*\Z")
 _CLASSIFIER = re.compile(
     r"[A-Za-z](?:_?[A-Za-z0-9])*(?:::[A-Za-z](?:_?[A-Za-z0-9])*)+(?:\.[A-Za-z](?:_?[A-Za-z0-9])*)?\Z"
 )
+#: A thread of a node: its name, or its path through thread groups (``Client.client_timer``).
+_THREAD_PATH = re.compile(r"[A-Za-z](?:_?[A-Za-z0-9])*(?:\.[A-Za-z](?:_?[A-Za-z0-9])*)*\Z")
 _NODE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:::[A-Za-z][A-Za-z0-9_]*)*\Z")
 _CENT = Decimal("0.01")
 
@@ -344,7 +346,10 @@ def _read_row(
         "node", _NODE_NAME, "a node (its package nd_x, its process x_nd, Pkg::x_nd or its ROS node name)"
     )
     thread = name(
-        "thread", _IDENTIFIER, "a thread (the name of a thread of the node's PIM, or its thread type)"
+        "thread",
+        _THREAD_PATH,
+        "a thread (the name of a thread of the node's PIM, its path through thread groups "
+        "Group.thread, or its thread type)",
     )
     board = name(
         "board", _IDENTIFIER, "a board name (letters, digits and single underscores, starting with a letter)"

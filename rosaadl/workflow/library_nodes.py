@@ -48,8 +48,12 @@ class MeasuredNode:
     ctype: EObject
     package: EObject
     pim: EObject
-    threads: dict[str, EObject]  # lower-case subcomponent name -> subcomponent
-    instances: dict[str, EObject]  # lower-case subcomponent name -> thread instance
+    threads: dict[str, EObject]  # lower-case path -> thread subcomponent (see :attr:`paths`)
+    instances: dict[str, EObject]  # lower-case path -> thread instance
+    #: lower-case path -> the thread's path in the PIM: its subcomponent's name, or the names of
+    #: the thread groups it is in and its own, dotted (``Client.client_timer``, as ROSMOD
+    #: components become thread groups)
+    paths: dict[str, str]
 
 
 @dataclass
@@ -61,7 +65,18 @@ class MeasuredThread:
     sub: EObject
     thread_classifier: EObject  # what the PIM subcomponent is (an implementation or a type)
     thread_type: EObject
+    path: str  # the thread's path in the PIM (:attr:`MeasuredNode.paths`)
     port: str | None = None  # the data port data_size_bytes belongs to
+
+    @property
+    def key(self) -> str:
+        """The lower-case path: the key of the thread in its node's maps."""
+        return self.path.lower()
+
+    @property
+    def nested(self) -> bool:
+        """The thread is in a thread group of the PIM, not a subcomponent of the process."""
+        return "." in self.path
 
 
 class NodeFinder:
@@ -180,40 +195,67 @@ class NodeFinder:
         self.errors.append(m.error("node", message))
         return None
 
+    def _pim_threads(self, pim: EObject) -> dict[str, tuple[str, EObject]]:
+        """Lower-case path -> ``(path, subcomponent)`` of every thread of ``pim``, in its thread
+        groups too (an implementation that contains itself is not entered again)."""
+        found: dict[str, tuple[str, EObject]] = {}
+
+        def walk(impl: EObject, prefix: str, entered: frozenset[int]) -> None:
+            for sub in self.resolver.subcomponents(impl):
+                path = f"{prefix}{sub.name or ''}"
+                category = literal(sub.category)
+                if category == "thread":
+                    found.setdefault(path.lower(), (path, sub))
+                elif category == "thread group":
+                    inner = self.resolver.subcomponent_classifier(sub)
+                    if is_a(inner, "ComponentImplementation") and id(inner) not in entered:
+                        walk(inner, f"{path}.", entered | {id(inner)})
+
+        walk(pim, "", frozenset({id(pim)}))
+        return found
+
     def _instantiate_pim(self, ctype: EObject, pim: EObject) -> MeasuredNode:
-        threads = {
-            (sub.name or "").lower(): sub
-            for sub in self.resolver.subcomponents(pim)
-            if literal(sub.category) == "thread"
-        }
+        found = self._pim_threads(pim)
+        threads = {key: sub for key, (_path, sub) in found.items()}
         notes: list[Diagnostic] = []
         instance = instantiate(
             self.model, self.resolver.qualified_name(pim), resolver=self.resolver, diagnostics=notes
         )
+        instances: dict[str, EObject] = {}
+
+        def walk(parent: EObject, prefix: str) -> None:
+            for child in parent.componentInstances:
+                key = f"{prefix}{(child.name or '').lower()}"
+                if key in threads:
+                    instances.setdefault(key, child)
+                elif any(k.startswith(f"{key}.") for k in threads):
+                    walk(child, f"{key}.")
+
         try:
-            instances = {}
-            for child in instance.componentInstances:
-                key = (child.name or "").lower()
-                if key in threads and key not in instances:
-                    instances[key] = child
+            walk(instance, "")
         finally:
             self.model.instances.remove(instance)
         unit = self.resolver.unit_of(ctype)
-        return MeasuredNode(ctype, unit, pim, threads, instances)
+        paths = {key: path for key, (path, _sub) in found.items()}
+        return MeasuredNode(ctype, unit, pim, threads, instances, paths)
 
     def thread(self, m: Measurement, node: MeasuredNode) -> MeasuredThread | None:
         """The thread of the node's PIM a row measures, by subcomponent or thread type name."""
         resolver = self.resolver
-        sub = node.threads.get(m.thread.lower())
-        if sub is None:
+        wanted = m.thread.lower()
+        key = wanted if wanted in node.threads else None
+        if key is None:  # a thread in a thread group, named by its own name alone
+            named = [k for k in node.threads if "." in k and k.rpartition(".")[2] == wanted]
+            key = named[0] if len(named) == 1 else None
+        if key is None:
             matches = []
-            for candidate in node.threads.values():
-                classifier = resolver.subcomponent_classifier(candidate)
+            for candidate, sub in node.threads.items():
+                classifier = resolver.subcomponent_classifier(sub)
                 ctype = resolver.component_type(classifier)
-                if ctype is not None and (ctype.name or "").lower() == m.thread.lower():
+                if ctype is not None and (ctype.name or "").lower() == wanted:
                     matches.append(candidate)
             if len(matches) > 1:
-                names = ", ".join(s.name for s in matches)
+                names = ", ".join(node.paths[k] for k in matches)
                 self.errors.append(
                     m.error(
                         "thread",
@@ -222,9 +264,9 @@ class NodeFinder:
                     )
                 )
                 return None
-            sub = matches[0] if matches else None
-        if sub is None:
-            names = ", ".join(s.name for s in node.threads.values()) or "none"
+            key = matches[0] if matches else None
+        if key is None:
+            names = ", ".join(node.paths.values()) or "none"
             self.errors.append(
                 m.error(
                     "thread",
@@ -233,18 +275,19 @@ class NodeFinder:
                 )
             )
             return None
+        sub = node.threads[key]
         classifier = resolver.subcomponent_classifier(sub)
         ctype = resolver.component_type(classifier)
         if classifier is None or ctype is None:
             self.errors.append(
                 m.error(
                     "thread",
-                    f"thread {sub.name} of {resolver.qualified_name(node.pim)} has no "
+                    f"thread {node.paths[key]} of {resolver.qualified_name(node.pim)} has no "
                     "thread classifier that a PDM could extend",
                 )
             )
             return None
-        return MeasuredThread(m, node, sub, classifier, ctype)
+        return MeasuredThread(m, node, sub, classifier, ctype, node.paths[key])
 
     # ------------------------------------------------------------------ reference processors
 

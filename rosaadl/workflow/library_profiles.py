@@ -96,7 +96,7 @@ class ExpectedValues:
     """What one row puts into a PDM, checked on the instance of the PDM before writing."""
 
     m: Measurement
-    thread: str  # the thread subcomponent
+    thread: str  # the thread's path in the node (its subcomponent, or thread groups and it, dotted)
     port: str | None
 
 
@@ -141,7 +141,7 @@ class ProfileBuilder:
     def _check_duplicates(self, rows: list[MeasuredThread]) -> None:
         seen: dict[tuple[int, str, str], Measurement] = {}
         for row in rows:
-            key = (id(row.node.ctype), (row.sub.name or "").lower(), row.m.pdm.lower())
+            key = (id(row.node.ctype), row.key, row.m.pdm.lower())
             first = seen.get(key)
             if first is None:
                 seen[key] = row.m
@@ -149,7 +149,7 @@ class ProfileBuilder:
             self.errors.append(
                 row.m.error(
                     "node, thread, board, core",
-                    f"duplicate measurement of thread {row.sub.name} of "
+                    f"duplicate measurement of thread {row.path} of "
                     f"{self.resolver.qualified_name(row.node.ctype)} on {row.m.pdm}: "
                     f"row {first.row} (line {first.line}) already gives it",
                 )
@@ -212,7 +212,7 @@ class ProfileBuilder:
                 impls, summary = result
                 classifiers.extend(impls)
                 made.append(summary)
-                rows_of[summary.process.lower()] = [ExpectedValues(r.m, r.sub.name, r.port) for r in pdm_rows]
+                rows_of[summary.process.lower()] = [ExpectedValues(r.m, r.path, r.port) for r in pdm_rows]
         if len(self.errors) > before:
             return None
         unit = model.new(
@@ -321,8 +321,13 @@ class ProfileBuilder:
         # thread PDMs, one per thread type
         threads: dict[str, tuple[EObject, MeasuredThread]] = {}
         refinements = []
+        nested: list[EObject] = []  # the values of threads in thread groups, applied to their paths
         order = {key: index for index, key in enumerate(node.threads)}
-        for row in sorted(rows, key=lambda r: order.get((r.sub.name or "").lower(), 0)):
+        for row in sorted(rows, key=lambda r: order.get(r.key, 0)):
+            if row.nested:
+                found = self._thread_properties(row, row.path)
+                nested.extend(found or ())
+                continue
             alias = alias_for(row.thread_type, row.m, "thread")
             if alias is None:
                 continue
@@ -351,12 +356,12 @@ class ProfileBuilder:
             )
         if len(self.errors) > before or node_alias is None:
             return None
+        properties: list[EObject] = []
         if any(r.m.dispatch_latency_ns is not None for r in rows) and "ROS_Properties" not in withs:
             withs.append("ROS_Properties")
         budget = first.mips_budget
-        properties = []
         if budget is not None:  # a run without hardware counters measures no instruction rate
-            properties = [
+            properties += [
                 _association("SEI::MIPSBudget", _real(budget, "MIPS")),
                 _association("ROS_Profiling::Raw_MIPS", _real(first.mips_raw, "MIPS")),
                 _association("ROS_Profiling::IPC", _real(first.ipc, None)),
@@ -380,7 +385,7 @@ class ProfileBuilder:
             category="process",
             extended=resolver.qualified_name(node.pim),
             subcomponents=refinements,
-            ownedPropertyAssociations=properties,
+            ownedPropertyAssociations=[*properties, *nested],
         )
         package = f"{node.package.name}{PROFILE_SUFFIX}"
         summary = ProfiledImplementation(
@@ -394,43 +399,12 @@ class ProfileBuilder:
         return [process, *(impl for impl, _ in threads.values())], summary
 
     def _thread_pdm(self, row: MeasuredThread, alias: str, pdm: str) -> EObject | None:
-        resolver = self.resolver
-        m = row.m
-        instance = row.node.instances.get((row.sub.name or "").lower())
-        properties = [_association("Compute_Execution_Time", _time_range(m.cet_ns))]
-        if m.dispatch_latency_ns is not None:
-            properties.append(_association(DISPATCH_LATENCY, _time(m.dispatch_latency_ns)))
-        pim_period = ns_of(instance_value(instance, "Period"))
-        if m.period_ns is not None and pim_period != m.period_ns:
-            properties.append(_association("Period", _time(m.period_ns)))
-            if pim_period is not None:
-                self.warnings.append(
-                    Diagnostic(
-                        "warning",
-                        f"row {m.row}, column period_us: {us_text(m.period_ns)} differs from the Period "
-                        f"of {row.sub.name} in the PIM ({us_text(pim_period)}); the PDM thread sets its "
-                        "own Period",
-                        m.where("period_us"),
-                    )
-                )
-        if m.data_size is not None:
-            port = self._data_port(row, instance)
-            if port is None:
-                return None
-            size = instance_value(port, "Data_Size")
-            current = bytes_of(size)
-            row.port = port.name
-            if current != m.data_size:
-                properties.append(
-                    _association(
-                        "Data_Size",
-                        model.new("IntegerValue", value=m.data_size, unit="Bytes"),
-                        applies_to=[port.name],
-                    )
-                )
+        properties = self._thread_properties(row)
+        if properties is None:
+            return None
         extended = None
         if is_a(row.thread_classifier, "ComponentImplementation"):
-            extended = resolver.qualified_name(row.thread_classifier)
+            extended = self.resolver.qualified_name(row.thread_classifier)
         return model.new(
             "ComponentImplementation",
             name=f"{alias}.{pdm}",
@@ -439,6 +413,43 @@ class ProfileBuilder:
             extended=extended,
             ownedPropertyAssociations=properties,
         )
+
+    def _thread_properties(self, row: MeasuredThread, path: str = "") -> list[EObject] | None:
+        """The measured values of a thread: for its thread PDM, or with ``path`` (a thread in a
+        thread group) for its node's process PDM, each applied to ``path`` or to its port there;
+        None when its Data_Size belongs to no one port (an error)."""
+        m = row.m
+        instance = row.node.instances.get(row.key)
+
+        def value(prop: str, item: EObject, port: str | None = None) -> EObject:
+            target = ".".join(p for p in (path, port) if p)
+            return _association(prop, item, [target] if target else [])
+
+        properties = [value("Compute_Execution_Time", _time_range(m.cet_ns))]
+        if m.dispatch_latency_ns is not None:
+            properties.append(value(DISPATCH_LATENCY, _time(m.dispatch_latency_ns)))
+        pim_period = ns_of(instance_value(instance, "Period"))
+        if m.period_ns is not None and pim_period != m.period_ns:
+            properties.append(value("Period", _time(m.period_ns)))
+            if pim_period is not None:
+                self.warnings.append(
+                    Diagnostic(
+                        "warning",
+                        f"row {m.row}, column period_us: {us_text(m.period_ns)} differs from the Period "
+                        f"of {row.path} in the PIM ({us_text(pim_period)}); the PDM sets the thread's "
+                        "own Period",
+                        m.where("period_us"),
+                    )
+                )
+        if m.data_size is not None:
+            port = self._data_port(row, instance)
+            if port is None:
+                return None
+            row.port = port.name
+            if bytes_of(instance_value(port, "Data_Size")) != m.data_size:
+                measured = model.new("IntegerValue", value=m.data_size, unit="Bytes")
+                properties.append(value("Data_Size", measured, port.name))
+        return properties
 
     def _data_port(self, row: MeasuredThread, instance: EObject | None) -> EObject | None:
         ports = [
@@ -455,7 +466,7 @@ class ProfileBuilder:
         self.errors.append(
             row.m.error(
                 "data_size_bytes",
-                f"thread {row.sub.name} has {len(candidates)} {'outgoing' if outgoing else 'incoming'} data "
+                f"thread {row.path} has {len(candidates)} {'outgoing' if outgoing else 'incoming'} data "
                 f"ports ({names}); the data size must belong to exactly one (leave the cell empty)",
             )
         )

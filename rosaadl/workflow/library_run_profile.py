@@ -145,6 +145,7 @@ def run_measurement_rows(
             )
             continue
         process = thread.process or thread.path.rpartition(".")[0]
+        inside = thread.path[len(process) + 1 :] if thread.path.startswith(f"{process}.") else None
         published = sizes.get(thread.path, [])
         rows.append(
             Measurement(
@@ -152,7 +153,7 @@ def run_measurement_rows(
                 row=index + 1,
                 line=lines.get(where, 1),
                 node=nodes.get(process, process.rpartition(".")[2]),
-                thread=thread.path.rpartition(".")[2],
+                thread=inside or thread.path.rpartition(".")[2],  # in thread groups: dotted
                 board=named.get(process, (board, core))[0],
                 core=named.get(process, (board, core))[1],
                 period_ns=None,

@@ -184,3 +184,112 @@ def test_the_middleware_is_charged_evenly_to_every_dispatch_of_the_node(tmp_path
         assert profiled == pytest.approx(cet + per_dispatch, abs=0.001)
         load += profiled / period * 100
     assert load == pytest.approx(41.3, rel=1e-6)
+
+
+#: A node as ROSMOD projects become AADL: the process holds the component as a thread group,
+#: the component its callbacks' threads.
+ROSMOD_SHAPED = """package rosmod_shaped
+public
+  with ROS_Properties;
+  thread timer_callback
+  end timer_callback;
+  thread implementation timer_callback.impl
+    properties
+      Dispatch_Protocol => Periodic;
+      Period => 100 ms;
+  end timer_callback.impl;
+  thread group Pinger
+  end Pinger;
+  thread group implementation Pinger.impl
+    subcomponents
+      ping_timer: thread timer_callback.impl;
+      echo_timer: thread timer_callback.impl { Period => 50 ms; };
+  end Pinger.impl;
+  process Ping_Node
+  end Ping_Node;
+  process implementation Ping_Node.impl
+    subcomponents
+      Pinger: thread group Pinger.impl;
+  end Ping_Node.impl;
+  system App
+  end App;
+  system implementation App.impl
+    subcomponents
+      Ping_Node: process Ping_Node.impl;
+  end App.impl;
+end rosmod_shaped;
+"""
+
+
+def _rosmod_shaped_run(tmp_path) -> Path:
+    model = tmp_path / "model"
+    model.mkdir()
+    (model / "rosmod_shaped.aadl").write_text(ROSMOD_SHAPED)
+    threads = [
+        {
+            "path": f"Ping_Node.Pinger.{name}",
+            "process": "Ping_Node",
+            "dispatches": 100,
+            "period_us": {"mean": period, "jitter": 300.0},
+            "execution_time_us": {"min": cet - 10, "mean": cet, "max": cet + 30},
+            "response_time_us": {"min": cet, "mean": cet + 20, "max": cet + 90},
+            "deadline_misses": 0,
+            "dispatch_latency_us": {"min": 300.0, "mean": 400.0, "max": 812.4},
+        }
+        for name, period, cet in (("ping_timer", 100000.0, 1000.0), ("echo_timer", 50000.0, 500.0))
+    ]
+    document = {
+        "format": "rosaadl-measurements",
+        "version": 3,
+        "model": {"root": "rosmod_shaped::App.impl"},
+        "run": {"duration_s": 10.0, "emulate": True, "emulate_cet": "max", "board": "bbb", "core": "a8"},
+        "threads": threads,
+        "processes": [
+            {"path": "Ping_Node", "classifier": "rosmod_shaped::Ping_Node.impl", "cpu_load_percent": 2.6}
+        ],
+        "topics": [],
+        "chains": [],
+    }
+    write_tracking_measurements(tmp_path, document)
+    return model
+
+
+def test_threads_in_a_thread_group_get_their_values_on_the_process_pdm_at_their_path(tmp_path) -> None:
+    """ROSMOD's components are thread groups: their threads' measured values go to the node's PDM
+    as contained property associations, and the PDM's instance carries them where they were
+    measured."""
+    model = _rosmod_shaped_run(tmp_path)
+    out = tmp_path / "profiles"
+    add_profiles(tmp_path / "measurements.json", out, inputs=[model])
+    text = (out / "rosmod_shaped_profiles.aadl").read_text()
+    assert "process implementation Ping_Node.bbb_a8 extends rosmod_shaped::Ping_Node.impl" in text
+    assert "ROS_Properties::Dispatch_Latency => 813 us applies to Pinger.ping_timer;" in text
+    assert "thread implementation" not in text  # no thread PDM: the values sit on the process's
+    instance = instantiate(read_library([model, out]), "rosmod_shaped_profiles::Ping_Node.bbb_a8")
+    # 2.6 % of a CPU: the callbacks 1 % each, 10 + 20 dispatches a second share the other 6 ms
+    # a second: 200 us each
+    for name, cet_us in (("ping_timer", 1200), ("echo_timer", 700)):
+        thread = find_instance(instance, f"Pinger.{name}")
+        cet = property_value(thread, "Compute_Execution_Time")
+        assert cet.minimum.to("us") == cet.maximum.to("us") == cet_us
+
+
+def test_a_thread_in_a_thread_group_is_named_by_its_path_or_its_own_name(tmp_path) -> None:
+    model = tmp_path / "model"
+    model.mkdir()
+    (model / "rosmod_shaped.aadl").write_text(ROSMOD_SHAPED)
+    rows = "node,thread,board,core,period_us,cet_us,mips_raw,ipc,data_size_bytes\n"
+    rows += "rosmod_shaped::Ping_Node,Pinger.ping_timer,bbb,a8,100000,900,500,0.6,\n"
+    rows += "rosmod_shaped::Ping_Node,echo_timer,bbb,a8,50000,400,500,0.6,\n"
+    (tmp_path / "m.csv").write_text(rows)
+    add_profiles(tmp_path / "m.csv", tmp_path / "out", inputs=[model])
+    text = (tmp_path / "out" / "rosmod_shaped_profiles.aadl").read_text()
+    assert "Compute_Execution_Time => 900 us .. 900 us applies to Pinger.ping_timer;" in text
+    assert "Compute_Execution_Time => 400 us .. 400 us applies to Pinger.echo_timer;" in text
+    rows += "rosmod_shaped::Ping_Node,pinger,bbb,a8,50000,400,500,0.6,\n"
+    (tmp_path / "m.csv").write_text(rows)
+    with pytest.raises(
+        RosaadlError,
+        match=r"unknown thread 'pinger': .* has the threads Pinger\.ping_timer, Pinger\.echo_timer",
+    ):
+        add_profiles(tmp_path / "m.csv", tmp_path / "out2", inputs=[model])
