@@ -151,7 +151,9 @@ class NodeFinder:
                 m.error(
                     "node",
                     f"unknown node {m.node!r}: not a node of the library or of the inputs "
-                    f"(nodes: {', '.join(shown)}{', ...' if len(shown) < len(names) else ''})",
+                    f"(nodes: {', '.join(shown)}{', ...' if len(shown) < len(names) else ''}); "
+                    "a node of a model of your own: give its AADL files or folders after the "
+                    "measurements",
                 )
             )
             return None
