@@ -124,15 +124,13 @@ class ProfileBuilder:
             if row is not None:
                 rows.append(row)
         self._check_duplicates(rows)
-        by_node: dict[int, list[MeasuredThread]] = {}
+        by_package: dict[int, list[MeasuredThread]] = {}  # the nodes of one package: one package
         for row in rows:
-            by_node.setdefault(id(row.node.ctype), []).append(row)
+            by_package.setdefault(id(row.node.package), []).append(row)
         units = []
         implementations: list[ProfiledImplementation] = []
         rows_of: dict[str, list[ExpectedValues]] = {}
-        for group in sorted(
-            by_node.values(), key=lambda g: self.resolver.qualified_name(g[0].node.ctype).lower()
-        ):
+        for group in sorted(by_package.values(), key=lambda g: (g[0].node.package.name or "").lower()):
             unit = self._package(group, existing, implementations, rows_of)
             if unit is not None:
                 units.append(unit)
@@ -199,15 +197,19 @@ class ProfileBuilder:
                 withs.append(owner.name)
             return alias
 
-        node_alias = alias_for(ctype, group[0].m, "node")
-        by_pdm: dict[str, list[MeasuredThread]] = {}
+        by_pdm: dict[tuple[str, str], list[MeasuredThread]] = {}  # (node, PDM) -> its rows
         for row in group:
-            by_pdm.setdefault(row.m.pdm.lower(), []).append(row)
+            name = resolver.qualified_name(row.node.ctype).lower()
+            by_pdm.setdefault((name, row.m.pdm.lower()), []).append(row)
         classifiers: list[EObject] = []
         made: list[ProfiledImplementation] = []
+        node_aliases: dict[int, str | None] = {}
         for key in sorted(by_pdm):
             pdm_rows = by_pdm[key]
-            result = self._pdm(node, node_alias, pdm_rows, alias_for, withs)
+            node = pdm_rows[0].node
+            if id(node.ctype) not in node_aliases:
+                node_aliases[id(node.ctype)] = alias_for(node.ctype, pdm_rows[0].m, "node")
+            result = self._pdm(node, node_aliases[id(node.ctype)], pdm_rows, alias_for, withs)
             if result is not None:
                 impls, summary = result
                 classifiers.extend(impls)
@@ -232,19 +234,29 @@ class ProfileBuilder:
         )
         old = existing.get(package_name.lower())
         if old is not None:
-            classifiers = self._merge(unit, old, classifiers, set(by_pdm))
+            again = {  # what the nodes measured again had on their PDMs: their own and their threads'
+                f"{(name or '').lower()}.{pdm}"
+                for (_node, pdm), pdm_rows in by_pdm.items()
+                for name in (
+                    node_aliases.get(id(pdm_rows[0].node.ctype)),
+                    *(r.thread_type.name for r in pdm_rows),
+                )
+            }
+            classifiers = self._merge(unit, old, classifiers, again)
         unit.classifiers.extend(sorted(classifiers, key=_pdm_order))
         implementations.extend(made)
         return unit
 
-    def _merge(self, unit: EObject, old: EObject, new: list[EObject], pdms: set[str]) -> list[EObject]:
-        """Keep what an earlier profiles package held, except the PDMs measured again; the
-        classifiers of the new package."""
+    def _merge(self, unit: EObject, old: EObject, new: list[EObject], again: set[str]) -> list[EObject]:
+        """Keep what an earlier profiles package held, except the PDMs measured again (``again``:
+        the lower-case names of the measured nodes' and their threads' PDMs, ``<type>.<pdm>``;
+        a package may hold several nodes, each measured or not); the classifiers of the new
+        package."""
         made = {(c.name or "").lower(): c for c in new}
         kept = []
         for classifier in list(old.classifiers):
             name = (classifier.name or "").lower()
-            if name in made or name.rpartition(".")[2] in pdms:
+            if name in made or name in again:
                 replacement = made.get(name)
                 if replacement is None or _signature(replacement) != _signature(classifier):
                     self.warnings.append(

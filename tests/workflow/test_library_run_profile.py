@@ -211,11 +211,18 @@ public
     subcomponents
       Pinger: thread group Pinger.impl;
   end Ping_Node.impl;
+  process Pong_Node
+  end Pong_Node;
+  process implementation Pong_Node.impl
+    subcomponents
+      Ponger: thread group Pinger.impl;
+  end Pong_Node.impl;
   system App
   end App;
   system implementation App.impl
     subcomponents
       Ping_Node: process Ping_Node.impl;
+      Pong_Node: process Pong_Node.impl;
   end App.impl;
 end rosmod_shaped;
 """
@@ -293,3 +300,29 @@ def test_a_thread_in_a_thread_group_is_named_by_its_path_or_its_own_name(tmp_pat
         match=r"unknown thread 'pinger': .* has the threads Pinger\.ping_timer, Pinger\.echo_timer",
     ):
         add_profiles(tmp_path / "m.csv", tmp_path / "out2", inputs=[model])
+
+
+def test_nodes_of_one_package_share_its_profiles_package_and_keep_each_other_s_pdms(tmp_path) -> None:
+    """A ROSMOD deployment declares all its nodes in one package: their PDMs go to one profiles
+    package; measuring one of them again replaces its PDM and keeps the other's."""
+    model = tmp_path / "model"
+    model.mkdir()
+    (model / "rosmod_shaped.aadl").write_text(ROSMOD_SHAPED)
+    header = "node,thread,board,core,period_us,cet_us,mips_raw,ipc,data_size_bytes\n"
+    rows = "rosmod_shaped::Ping_Node,ping_timer,bbb,a8,100000,900,500,0.6,\n"
+    rows += "rosmod_shaped::Pong_Node,Ponger.ping_timer,bbb,a8,100000,800,400,0.5,\n"
+    (tmp_path / "m.csv").write_text(header + rows)
+    out = tmp_path / "out"
+    add_profiles(tmp_path / "m.csv", out, inputs=[model])
+    assert [p.name for p in out.iterdir()] == ["rosmod_shaped_profiles.aadl"]
+    text = (out / "rosmod_shaped_profiles.aadl").read_text()
+    assert "process implementation Ping_Node.bbb_a8 extends" in text
+    assert "process implementation Pong_Node.bbb_a8 extends" in text
+    (tmp_path / "again.csv").write_text(
+        header + "rosmod_shaped::Ping_Node,ping_timer,bbb,a8,100000,700,500,0.6,\n"
+    )
+    add_profiles(tmp_path / "again.csv", out, inputs=[model])
+    text = (out / "rosmod_shaped_profiles.aadl").read_text()
+    assert "Compute_Execution_Time => 700 us .. 700 us applies to Pinger.ping_timer;" in text
+    assert "Compute_Execution_Time => 800 us .. 800 us applies to Ponger.ping_timer;" in text
+    assert "900 us" not in text
