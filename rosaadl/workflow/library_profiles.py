@@ -234,18 +234,24 @@ class ProfileBuilder:
         )
         old = existing.get(package_name.lower())
         if old is not None:
-            again = {  # what the nodes measured again had on their PDMs: their own and their threads'
-                f"{(name or '').lower()}.{pdm}"
-                for (_node, pdm), pdm_rows in by_pdm.items()
-                for name in (
-                    node_aliases.get(id(pdm_rows[0].node.ctype)),
-                    *(r.thread_type.name for r in pdm_rows),
-                )
-            }
+            again = set()  # what the nodes measured again had on those PDMs: theirs, their threads'
+            for (_node, pdm), pdm_rows in by_pdm.items():
+                node = pdm_rows[0].node
+                names = [node_aliases.get(id(node.ctype)), *self._thread_type_names(node)]
+                again |= {f"{(name or '').lower()}.{pdm}" for name in names}
             classifiers = self._merge(unit, old, classifiers, again)
         unit.classifiers.extend(sorted(classifiers, key=_pdm_order))
         implementations.extend(made)
         return unit
+
+    def _thread_type_names(self, node: MeasuredNode) -> list[str]:
+        """The names of the thread types of every thread of ``node``'s PIM."""
+        names = []
+        for sub in node.threads.values():
+            ctype = self.resolver.component_type(self.resolver.subcomponent_classifier(sub))
+            if ctype is not None:
+                names.append(ctype.name or "")
+        return names
 
     def _merge(self, unit: EObject, old: EObject, new: list[EObject], again: set[str]) -> list[EObject]:
         """Keep what an earlier profiles package held, except the PDMs measured again (``again``:
