@@ -40,9 +40,9 @@ def _full_load(scheduler: Scheduler, preemptive: bool = True) -> TaskSet:
 
 
 def test_fixed_priority_full_load_stops_at_the_work_bound_with_a_miss():
-    start = time.monotonic()
+    start = time.process_time()
     result = analyze_schedulability(_full_load(Scheduler.RATE_MONOTONIC))
-    assert time.monotonic() - start < LIMIT_S
+    assert time.process_time() - start < LIMIT_S
     domain = result.domain("cpu")
     assert domain.schedulable is False
     row = {r.name: r for r in domain.tasks}["t1021"]

@@ -379,9 +379,9 @@ def test_a_large_model_wraps_and_stays_fast(tmp_path):
     source.write_text(_big_model(60, 8), encoding="utf-8")
     instance = instantiate(read_files([source]), "big_demo::top.impl")
     report = run_analyses(instance)
-    start = time.perf_counter()
+    start = time.process_time()
     html, data = render_report(instance, report)
-    elapsed = time.perf_counter() - start
+    elapsed = time.process_time() - start
     assert elapsed < 10, f"rendering took {elapsed:.1f} s"
     view = json.loads(data)
     assert len(view["architecture"]["nodes"]) == 60 and len(view["architecture"]["topics"]) == 59

@@ -94,9 +94,9 @@ def test_five_megabytes_of_garbage_fail_fast() -> None:
     alphabet = b"abcdefghijklmnopqrstuvwxyz0123456789 \n\t;:,.(){}[]=>-+*\"'#@!"
     table = bytes(alphabet[i % len(alphabet)] for i in range(256))
     garbage = rng.randbytes(5 * 1024 * 1024).translate(table).decode("ascii")
-    start = time.perf_counter()
+    start = time.process_time()
     error = syntax_error(garbage)
-    elapsed = time.perf_counter() - start
+    elapsed = time.process_time() - start
     assert error.location.line == 1
     assert "expected" in error.message
     assert elapsed < 1.0, f"reporting garbage took {elapsed:.2f}s"
@@ -106,9 +106,9 @@ def test_no_regex_backtracking_on_comments_of_dashes() -> None:
     aadl_syntax._reader()
     dashes = "-" * 200
     text = f"package P public\n system S\n  features\n   p: in {dashes}\n data port;\n end S;\nend P;\n"
-    start = time.perf_counter()
+    start = time.process_time()
     assert only(parse(text), "data_port").children[0] == "p"
-    assert time.perf_counter() - start < 0.5
+    assert time.process_time() - start < 0.5
 
 
 def test_in_binding_across_a_comment() -> None:

@@ -233,10 +233,10 @@ def test_five_megabytes_of_garbage(kind: str) -> None:
         data: bytes | str = bytes(rng.getrandbits(8) for _ in range(5 * 1024 * 1024))
     else:
         data = "".join(rng.choice('ab1 {}();:=>-.\n"') for _ in range(5 * 1024 * 1024))
-    start = time.perf_counter()
+    start = time.process_time()
     with pytest.raises(RosaadlError) as info:
         read_string(data, "garbage.aadl")
-    assert time.perf_counter() - start < 20
+    assert time.process_time() - start < 20
     assert isinstance(info.value, AadlSyntaxError)
     assert info.value.location.file == "garbage.aadl" and info.value.location.line >= 1
 

@@ -31,9 +31,9 @@ def test_cheddar_repeated_unknown_section_is_read_once_with_one_counted_warning(
     repeated = "<event_analyzers><event_analyzer><name>e</name></event_analyzer></event_analyzers>\n" * 1000
     text = _document().replace("</cheddar>", repeated + "</cheddar>")
     diagnostics: list[Diagnostic] = []
-    start = time.monotonic()
+    start = time.process_time()
     root = loads_cheddar(text.encode(), "repeated.xmlv3", diagnostics=diagnostics).instances[0]
-    assert time.monotonic() - start < 5
+    assert time.process_time() - start < 5
     (warning,) = [d for d in diagnostics if "event_analyzers" in d.message]
     assert "(1000 times)" in warning.message
     assert warning.location.line == 9
