@@ -29,7 +29,14 @@ from rosaadl.importers.ros2_package.facts import (
     NodeFact,
     SystemFacts,
 )
-from rosaadl.importers.ros2_package.launching import EntryPoint, LaunchAction, entry_points, launch_actions
+from rosaadl.importers.ros2_package.launching import (
+    EntryPoint,
+    LaunchAction,
+    cmake_programs,
+    entry_points,
+    launch_actions,
+    setup_cfg_entry_points,
+)
 from rosaadl.importers.ros2_package.node_classes import ModuleNodes, read_module
 from rosaadl.importers.ros2_package.sources import (
     MAX_DEPTH,
@@ -43,6 +50,7 @@ from rosaadl.importers.ros2_package.sources import (
 __all__ = ["read_ros2_packages", "read_facts", "is_ros2_package_folder"]
 
 _OTHER_LAUNCH = (".launch.xml", ".launch.yaml", ".launch.yml", ".launch")
+_CPP = (".cpp", ".cc", ".cxx", ".hpp", ".hh", ".h")
 
 
 def is_ros2_package_folder(path: Path) -> bool:
@@ -80,6 +88,7 @@ def _read_package(
     folder: Path, name: str, roots: list[Path], facts: SystemFacts, warnings: list[Diagnostic]
 ) -> _Package:
     package = _Package(name)
+    cpp = 0
     for path in package_files(folder):
         shown = str(path)
         relative = path.relative_to(folder)
@@ -100,6 +109,15 @@ def _read_package(
                 )
             )
             continue
+        if path.suffix in _CPP:
+            cpp += 1
+            continue
+        if relative.parts == ("setup.cfg",) or relative.parts == ("CMakeLists.txt",):
+            text = read_text(path, shown, roots, warnings)
+            if text is not None:
+                read = setup_cfg_entry_points if path.suffix == ".cfg" else cmake_programs
+                package.entries.extend(read(text, shown, warnings))
+            continue
         if path.suffix != ".py":
             continue
         text = read_text(path, shown, roots, warnings)
@@ -112,6 +130,15 @@ def _read_package(
             warnings.append(
                 Diagnostic("warning", "the source nests too deeply to be read; not read", Location(shown))
             )
+    if cpp:
+        warnings.append(
+            Diagnostic(
+                "warning",
+                f"package {name!r} has {cpp} C/C++ source file(s): only Python (rclpy) nodes are read; "
+                "its C++ nodes are not imported",
+                Location(str(folder / "package.xml")),
+            )
+        )
     return package
 
 
@@ -141,7 +168,7 @@ def _executables(packages: dict[str, _Package]) -> dict[tuple[str, str], list[No
             if module is None:
                 continue
             made = module.functions.get(entry.function) or []
-            nodes = [module.classes[n] for n in made if n in module.classes] or (
+            nodes = [module.classes[n] for n in dict.fromkeys(made) if n in module.classes] or (
                 module.nodes if len(module.nodes) == 1 else []
             )
             for node in nodes:
@@ -182,7 +209,7 @@ def _deployments(packages: dict[str, _Package], facts: SystemFacts, warnings: li
                         LaunchedNode(
                             node.key,
                             launched_name,
-                            action.namespace or "/",
+                            action.namespace or node.namespace,
                             dict(action.remappings),
                             dict(action.parameters),
                             action.location,

@@ -18,26 +18,34 @@ from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers.ros2_package.building import period_seconds
 from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate, stored_names
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
+from rosaadl.importers.ros2_package.qos import read_qos
 
-__all__ = ["ModuleNodes", "read_module", "dotted", "module_imports"]
+__all__ = ["SCRIPT", "ModuleNodes", "read_module", "dotted", "module_imports"]
 
 #: The node methods that create the constructs read, and the positions of their arguments.
 CREATES = {
     "create_publisher": ("Publisher", ("msg_type", "topic", "qos_profile")),
+    "create_lifecycle_publisher": ("Publisher", ("msg_type", "topic", "qos_profile")),
     "create_subscription": ("Subscriber", ("msg_type", "topic", "callback", "qos_profile")),
     "create_service": ("Server", ("srv_type", "srv_name", "callback")),
     "create_client": ("Client", ("srv_type", "srv_name")),
     "create_timer": ("Timer", ("timer_period_sec", "callback")),
 }
-_NODE_BASES = ("rclpy.node.Node",)
+#: The node classes of rclpy (``rclpy.lifecycle.Node`` is ``LifecycleNode``).
+_NODE_BASES = (
+    "rclpy.node.Node",
+    "rclpy.lifecycle.Node",
+    "rclpy.lifecycle.LifecycleNode",
+    "rclpy.lifecycle.node.LifecycleNode",
+)
 _NODE_FACTORIES = ("rclpy.create_node", "rclpy.node.Node")
-#: The QoS presets of ``rclpy.qos`` (rmw_qos_profiles.h): reliability, durability, depth.
-_PRESETS = {
-    "qos_profile_sensor_data": ("best_effort", "volatile", "5"),
-    "qos_profile_system_default": ("system_default", "system_default", ""),
-    "qos_profile_services_default": ("reliable", "volatile", "10"),
-    "qos_profile_parameters": ("reliable", "volatile", "1000"),
-}
+#: Statements of a module that define rather than run.
+_DEFINITIONS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Import, ast.ImportFrom)
+#: The name the nodes a module makes when run as a script are found under in
+#: :attr:`ModuleNodes.functions` (an executable installed as a file runs the whole module).
+SCRIPT = "<script>"
+#: rclpy's action server and client (``rclpy.action``): ROSMOD has no action ports.
+_ACTIONS = {"ActionServer": "action server", "ActionClient": "action client"}
 
 
 @dataclass
@@ -88,6 +96,10 @@ def _interface_type(qualified: str | None) -> str | None:
     return None
 
 
+def _keyword(call: ast.Call, name: str) -> ast.expr | None:
+    return next((k.value for k in call.keywords if k.arg == name), None)
+
+
 def _argument(call: ast.Call, names: tuple[str, ...], wanted: str) -> ast.expr | None:
     index = names.index(wanted)
     if index < len(call.args) and not any(isinstance(a, ast.Starred) for a in call.args[: index + 1]):
@@ -117,15 +129,29 @@ class _Reader:
     def warn(self, message: str, node: ast.AST) -> None:
         self.warnings.append(Diagnostic("warning", message, self.at(node)))
 
+    def value(self, expr: ast.expr | None, scope: Scope) -> Known:
+        """What ``expr`` is known to be (a value, or a QoS profile); ``Known(UNKNOWN)`` if not."""
+        value = evaluate(expr, scope)
+        if isinstance(value, Known):
+            return value
+        qos = read_qos(expr, scope, self.dotted)
+        return Known(qos) if qos is not None else Known(UNKNOWN)
+
+    def dotted(self, expr: ast.expr) -> str | None:
+        return dotted(expr, self.imports)
+
     def _module_constants(self) -> dict[str, Known]:
         names: dict[str, Known] = {}
         for stmt in self.tree.body:
             if isinstance(stmt, (ast.Assign, ast.AnnAssign)):
                 targets = stmt.targets if isinstance(stmt, ast.Assign) else [stmt.target]
-                value = evaluate(stmt.value, Scope(names))
+                value = self.value(stmt.value, Scope(names))
                 for target in targets:
                     if isinstance(target, ast.Name):
-                        names[target.id] = value if isinstance(value, Known) else Known(UNKNOWN)
+                        names[target.id] = value
+            else:
+                for name in stored_names(stmt):  # a name set again in a branch or loop is not known
+                    names[name] = Known(UNKNOWN)
         return names
 
     # ------------------------------------------------------------------ classes
@@ -158,17 +184,40 @@ class _Reader:
                 methods[stmt.name] = stmt
         return methods
 
-    def read_class(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> NodeFact:
-        methods = self.methods(cls, by_name)
-        names = dict(self.constants)
+    def class_attributes(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> dict[str, Known]:
+        """The class attributes of ``cls`` (and of its node base classes of the module), as the
+        methods read them: ``self.rate`` → ``Known(30)``. Inside methods a class attribute is
+        reached through ``self`` only, never by its bare name."""
+        found: dict[str, Known] = {}
+        for base in cls.bases:
+            if isinstance(base, ast.Name) and base.id in by_name and by_name[base.id] is not cls:
+                found.update(self.class_attributes(by_name[base.id], by_name))
+        body = {k.removeprefix("self."): v for k, v in found.items()}
         for stmt in cls.body:
             if (
                 isinstance(stmt, ast.Assign)
                 and len(stmt.targets) == 1
                 and isinstance(stmt.targets[0], ast.Name)
             ):
-                value = evaluate(stmt.value, Scope(names))
-                names[stmt.targets[0].id] = value if isinstance(value, Known) else Known(UNKNOWN)
+                body[stmt.targets[0].id] = self.value(stmt.value, Scope({**self.constants, **body}))
+            elif (
+                isinstance(stmt, ast.AnnAssign)
+                and isinstance(stmt.target, ast.Name)
+                and stmt.value is not None
+            ):
+                body[stmt.target.id] = self.value(stmt.value, Scope({**self.constants, **body}))
+            elif not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                for name in stored_names(stmt):
+                    body[name] = Known(UNKNOWN)
+        return {"self." + k: v for k, v in body.items()}
+
+    def read_class(
+        self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef], bound: dict[str, Known]
+    ) -> NodeFact:
+        """The node of class ``cls``; ``bound``: what its ``__init__`` arguments are known to be
+        where the module makes the node (see :meth:`constructor_arguments`)."""
+        methods = self.methods(cls, by_name)
+        names = {**self.constants, **self.class_attributes(cls, by_name)}
         fact = NodeFact(
             key=f"{self.package}:{self.file}:{cls.name}",
             node_name=cls.name,
@@ -179,7 +228,8 @@ class _Reader:
         fact.parameters = parameters
         scope = Scope(names, parameters, methods)
         init = methods.get("__init__")
-        node_name = self.node_name(init, scope) if init is not None else None
+        init_scope = scope.with_names(bound)
+        node_name = self.node_name(init, init_scope, fact) if init is not None else None
         if node_name is None:
             self.warn(
                 f"class {cls.name}: the node name is not a literal given to Node.__init__; "
@@ -191,8 +241,50 @@ class _Reader:
         ordered = ([init] if init is not None else []) + [m for m in methods.values() if m is not init]
         attributes: dict[str, Known] = {}
         for method in ordered:
-            self.block(method.body, scope.with_names(attributes), fact, ("self",), attributes, in_loop=False)
+            start = init_scope if method is init else scope
+            self.block(method.body, start.with_names(attributes), fact, ("self",), attributes, in_loop=False)
         return fact
+
+    def constructor_arguments(self, cls: ast.ClassDef, init: ast.FunctionDef | None) -> dict[str, Known]:
+        """The values of ``cls.__init__``'s parameters where this module makes the node
+        (``LifecycleTalker('lc_talker')`` in ``main``): a parameter is known when every call of
+        the class in the module gives it the same known value (an argument, or the parameter's
+        default); with no call in the module, nothing is known (another module may make it)."""
+        if init is None:
+            return {}
+        params = [a.arg for a in init.args.posonlyargs + init.args.args][1:]
+        defaults = dict(zip(reversed(params), reversed(init.args.defaults), strict=False))
+        defaults.update(
+            {a.arg: d for a, d in zip(init.args.kwonlyargs, init.args.kw_defaults, strict=True) if d}
+        )
+        names = params + [a.arg for a in init.args.kwonlyargs]
+        calls = [
+            (function, node)
+            for function in self.tree.body
+            if isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef))
+            for node in ast.walk(function)
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == cls.name
+        ]
+        if not calls:
+            return {}
+        seen: list[dict[str, Known]] = []
+        for function, call in calls:
+            if any(isinstance(a, ast.Starred) for a in call.args) or any(
+                k.arg is None for k in call.keywords
+            ):
+                return {}
+            scope = Scope({**self.constants, **_single_assignments(function, self)})
+            given: dict[str, ast.expr] = dict(zip(params, call.args, strict=False))
+            given.update({k.arg: k.value for k in call.keywords if k.arg})
+            values = {}
+            for name in names:
+                expr = given.get(name, defaults.get(name))
+                values[name] = self.value(expr, Scope(self.constants) if name not in given else scope)
+            seen.append(values)
+        first = seen[0]
+        return {
+            n: v if all(other.get(n) == v for other in seen) else Known(UNKNOWN) for n, v in first.items()
+        }
 
     def parameters(self, functions: list[ast.FunctionDef], names: dict[str, Known]) -> dict[str, object]:
         """Every ``declare_parameter(name, default)`` (and ``declare_parameters``) whose name and
@@ -227,7 +319,8 @@ class _Reader:
                 if isinstance(name, Known) and isinstance(name.value, str) and isinstance(default, Known):
                     found[f"{prefix}.{name.value}" if prefix else name.value] = default.value
 
-    def node_name(self, init: ast.FunctionDef, scope: Scope) -> str | None:
+    def node_name(self, init: ast.FunctionDef, scope: Scope, fact: NodeFact) -> str | None:
+        """The name ``init`` gives ``Node.__init__`` (its ``namespace=`` goes to ``fact``)."""
         for node in ast.walk(init):
             if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
                 continue
@@ -241,7 +334,8 @@ class _Reader:
                 and receiver.func.id == "super"
             ):
                 args = args[1:]  # Node.__init__(self, name)
-            given = args[0] if args else next((k.value for k in node.keywords if k.arg == "node_name"), None)
+            given = args[0] if args else _keyword(node, "node_name")
+            self.namespace(node, scope, fact)
             value = evaluate(given, scope)
             if isinstance(value, Known) and isinstance(value.value, str) and value.value:
                 return value.value
@@ -282,8 +376,7 @@ class _Reader:
                 self.create(call, current, fact, receivers, in_loop=in_loop)
             if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1:
                 target = stmt.targets[0]
-                value = evaluate(stmt.value, current)
-                known = value if isinstance(value, Known) else Known(UNKNOWN)
+                known = self.value(stmt.value, current)
                 if isinstance(target, ast.Name):
                     names[target.id] = known
                 elif (
@@ -293,9 +386,13 @@ class _Reader:
                 ):
                     names["self." + target.attr] = known
                     attributes["self." + target.attr] = known
+                else:
+                    _forget_changed(target, names)
             else:
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
+                for target in getattr(stmt, "targets", None) or [getattr(stmt, "target", None)]:
+                    _forget_changed(target, names)
 
     def create(
         self, call: ast.Call, scope: Scope, fact: NodeFact, receivers: tuple[str, ...], *, in_loop: bool
@@ -368,63 +465,107 @@ class _Reader:
     def qos(self, expr: ast.expr | None, scope: Scope, call: ast.Call) -> dict[str, str]:
         if expr is None:
             return {}
-        value = evaluate(expr, scope)
-        if isinstance(value, Known) and isinstance(value.value, int) and not isinstance(value.value, bool):
-            return {"depth": str(value.value), "reliability": "reliable", "durability": "volatile"}
-        name = dotted(expr, self.imports)
-        preset = _PRESETS.get((name or "").rpartition(".")[2])
-        if preset:
-            return {k: v for k, v in zip(("reliability", "durability", "depth"), preset, strict=True) if v}
-        if isinstance(expr, ast.Call) and (dotted(expr.func, self.imports) or "").endswith("QoSProfile"):
-            found = {}
-            for keyword in expr.keywords:
-                if keyword.arg in ("reliability", "durability") and isinstance(keyword.value, ast.Attribute):
-                    found[keyword.arg] = keyword.value.attr.lower()
-                elif keyword.arg == "depth":
-                    depth = evaluate(keyword.value, scope)
-                    if isinstance(depth, Known) and isinstance(depth.value, int):
-                        found["depth"] = str(depth.value)
-            return found
-        self.warn(f"{call.func.attr}: the QoS {ast.unparse(expr)} is not known from the source", call)  # type: ignore[attr-defined]
-        return {}
+        found = read_qos(expr, scope, self.dotted)
+        if found is None:
+            self.warn(f"{call.func.attr}: the QoS {ast.unparse(expr)} is not known from the source", call)  # type: ignore[attr-defined]
+            return {}
+        return found.as_dict()
+
+    def action(self, call: ast.Call) -> bool:
+        """Name an ``rclpy.action`` server or client in a warning (ROSMOD has no actions: an
+        action is a goal, a cancel and a result service with a feedback and a status topic)."""
+        name = self.dotted(call.func) or ""
+        kind = _ACTIONS.get(name.rpartition(".")[2])
+        if kind is None or not (name.startswith("rclpy.action") or "." not in name):
+            return False
+        names = ("node", "action_type", "action_name")
+        type_expr = _argument(call, names, "action_type")
+        action_name = evaluate(_argument(call, names, "action_name"), Scope(self.constants))
+        type_name = dotted(type_expr, self.imports) if type_expr is not None else None
+        parts = (type_name or "").split(".")
+        shown_type = (
+            f"{parts[0]}/{parts[2]}" if len(parts) == 3 and parts[1] == "action" else "of unknown type"
+        )
+        shown_name = (
+            repr(action_name.value)
+            if isinstance(action_name, Known) and isinstance(action_name.value, str)
+            else "(name not known from the source)"
+        )
+        self.warn(
+            f"{kind} {shown_name} {shown_type}: ROSMOD has no actions (its goal, cancel and result "
+            "services and its feedback and status topics); not imported",
+            call,
+        )
+        return True
 
     # ------------------------------------------------------------------ functions
 
-    def read_function(self, function: ast.FunctionDef) -> NodeFact | None:
-        """A node made in a function: ``node = rclpy.create_node('name')`` then ``node.create_*``."""
-        receivers = []
-        fact = None
+    def read_function(self, function: ast.FunctionDef) -> list[tuple[str, NodeFact]]:
+        """The nodes made in a function: ``node = rclpy.create_node('name')`` (or ``Node('name')``)
+        then ``node.create_*``; each variable so bound is a node of its own (``talker`` and
+        ``listener`` in one ``main``). Returns (key in the module, node) pairs, the first node
+        keyed by the function's name."""
+        made: dict[str, NodeFact] = {}
+        constants = Scope({**self.constants, **_single_assignments(function, self)})
         for stmt in ast.walk(function):
-            if (
+            if not (
                 isinstance(stmt, ast.Assign)
                 and len(stmt.targets) == 1
                 and isinstance(stmt.targets[0], ast.Name)
                 and isinstance(stmt.value, ast.Call)
                 and dotted(stmt.value.func, self.imports) in _NODE_FACTORIES
             ):
-                name = evaluate(stmt.value.args[0] if stmt.value.args else None, Scope(self.constants))
-                if not (isinstance(name, Known) and isinstance(name.value, str)):
-                    self.warn("a node is made with a name not known from the source; not imported", stmt)
-                    continue
-                receivers.append(stmt.targets[0].id)
-                fact = fact or NodeFact(
-                    key=f"{self.package}:{self.file}:{function.name}",
-                    node_name=name.value,
-                    location=self.at(stmt),
-                    package=self.package,
+                continue
+            call = stmt.value
+            name = evaluate(call.args[0] if call.args else _keyword(call, "node_name"), constants)
+            variable = stmt.targets[0].id
+            if not (isinstance(name, Known) and isinstance(name.value, str)):
+                self.warn("a node is made with a name not known from the source; not imported", stmt)
+                continue
+            if variable in made:
+                self.warn(
+                    f"{variable} is given a second node: what each creates is not known; the first is kept",
+                    stmt,
                 )
-        if fact is None:
-            return None
-        fact.parameters = self.parameters([function], dict(self.constants))
-        scope = Scope(dict(self.constants), fact.parameters, {})
-        self.block(function.body, scope, fact, tuple(receivers), {}, in_loop=False)
-        return fact
+                continue
+            key = function.name if not made else f"{function.name}:{variable}"
+            made[variable] = NodeFact(
+                key=f"{self.package}:{self.file}:{key}",
+                node_name=name.value,
+                location=self.at(stmt),
+                package=self.package,
+            )
+            self.namespace(call, constants, made[variable])
+        found = []
+        parameters = self.parameters([function], dict(self.constants))
+        for index, (variable, fact) in enumerate(made.items()):
+            fact.parameters = parameters
+            scope = Scope(dict(self.constants), fact.parameters, {})
+            self.block(function.body, scope, fact, (variable,), {}, in_loop=False)
+            found.append((function.name if index == 0 else f"{function.name}:{variable}", fact))
+        return found
+
+    def namespace(self, call: ast.Call, scope: Scope, fact: NodeFact) -> None:
+        """The ``namespace=`` a node is made with (``Node.__init__`` or ``create_node``)."""
+        given = _keyword(call, "namespace")
+        if given is None:
+            return
+        value = evaluate(given, scope)
+        if isinstance(value, Known) and isinstance(value.value, str):
+            fact.namespace = "/" + value.value.strip("/")
+        else:
+            self.warn(
+                f"the node's namespace {ast.unparse(given)} is not known from the source; "
+                "the root namespace is kept",
+                call,
+            )
 
     def read(self) -> ModuleNodes:
         classes = self.node_classes()
         by_name = {c.name: c for c in classes}
         for cls in classes:
-            fact = self.read_class(cls, by_name)
+            bound = self.constructor_arguments(cls, self.methods(cls, by_name).get("__init__"))
+            fact = self.read_class(cls, by_name, bound)
             self.result.nodes.append(fact)
             self.result.classes[cls.name] = fact
         for stmt in self.tree.body:
@@ -435,12 +576,35 @@ class _Reader:
                     if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in by_name
                 ]
                 self.result.functions[stmt.name] = made
-                fact = self.read_function(stmt)
-                if fact is not None:
+                for key, fact in self.read_function(stmt):
                     self.result.nodes.append(fact)
-                    self.result.functions[stmt.name] = [*made, stmt.name]
-                    self.result.classes[stmt.name] = fact
+                    self.result.functions[stmt.name] = [*self.result.functions[stmt.name], key]
+                    self.result.classes[key] = fact
+        script = [s for s in self.tree.body if not isinstance(s, _DEFINITIONS)]
+        if script:  # the module's own statements, run as a script (``if __name__ == '__main__':``)
+            module = ast.FunctionDef(
+                name=SCRIPT,
+                args=ast.arguments([], [], None, [], [], None, []),
+                body=script,
+                decorator_list=[],
+            )
+            called = {
+                n.func.id
+                for s in script
+                for n in ast.walk(s)
+                if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+            }
+            made = [n for n in called if n in by_name]
+            for function in sorted(called & set(self.result.functions)):
+                made.extend(self.result.functions[function])
+            self.result.functions[SCRIPT] = made
+            for key, fact in self.read_function(module):
+                self.result.nodes.append(fact)
+                self.result.functions[SCRIPT] = [*self.result.functions[SCRIPT], key]
+                self.result.classes[key] = fact
         for node in ast.walk(self.tree):
+            if isinstance(node, ast.Call) and self.action(node):
+                continue
             if (
                 isinstance(node, ast.Call)
                 and isinstance(node.func, ast.Attribute)
@@ -453,6 +617,46 @@ class _Reader:
                     node,
                 )
         return self.result
+
+
+def _forget_changed(target: ast.expr | None, names: dict[str, Known]) -> None:
+    """``qos.depth = 1`` or ``self.qos.depth = 1`` changes what ``qos`` (``self.qos``) holds: no
+    longer known."""
+    while isinstance(target, (ast.Attribute, ast.Subscript)):
+        inner = target.value
+        if isinstance(inner, ast.Name):
+            names[inner.id] = Known(UNKNOWN)
+        elif (
+            isinstance(inner, ast.Attribute)
+            and isinstance(inner.value, ast.Name)
+            and inner.value.id == "self"
+        ):
+            names["self." + inner.attr] = Known(UNKNOWN)
+        target = inner
+
+
+def _single_assignments(
+    function: ast.FunctionDef | ast.AsyncFunctionDef, reader: _Reader
+) -> dict[str, Known]:
+    """The local names of ``function`` assigned once in it, to a value known from the module's
+    constants and the names before (a name assigned twice, or otherwise stored, is left out)."""
+    counts: dict[str, int] = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            counts[node.id] = counts.get(node.id, 0) + 1
+    for arg in ast.walk(function.args):
+        if isinstance(arg, ast.arg):
+            counts[arg.arg] = counts.get(arg.arg, 0) + 2
+    names: dict[str, Known] = {}
+    for node in ast.walk(function):
+        if (
+            isinstance(node, ast.Assign)
+            and len(node.targets) == 1
+            and isinstance(node.targets[0], ast.Name)
+            and counts.get(node.targets[0].id) == 1
+        ):
+            names[node.targets[0].id] = reader.value(node.value, Scope({**reader.constants, **names}))
+    return names
 
 
 def _assigned_attribute(call: ast.Call, tree: ast.Module, *, raw: bool = False) -> str | None:
