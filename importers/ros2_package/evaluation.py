@@ -55,9 +55,10 @@ class Scope:
     parameters: Mapping[str, object] = field(default_factory=dict)  #: declared name → default
     methods: Mapping[str, ast.FunctionDef] = field(default_factory=dict)  #: the class's methods
     depth: int = 0
+    node: str = "self"  #: the name the node goes by (``self``, or ``node`` in a function)
 
     def with_names(self, names: Mapping[str, Known]) -> Scope:
-        return Scope({**self.names, **names}, self.parameters, self.methods, self.depth)
+        return Scope({**self.names, **names}, self.parameters, self.methods, self.depth, self.node)
 
 
 _BINARY: dict[type, Callable[[object, object], object]] = {
@@ -95,13 +96,13 @@ def _binary(op: ast.operator, left: object, right: object) -> object:
     return UNKNOWN
 
 
-def _self_call(node: ast.expr) -> ast.Call | None:
-    """``node`` when it is ``self.<name>(...)``."""
+def _self_call(node: ast.expr, receiver: str = "self") -> ast.Call | None:
+    """``node`` when it is ``self.<name>(...)`` (``receiver`` standing for ``self``)."""
     if (
         isinstance(node, ast.Call)
         and isinstance(node.func, ast.Attribute)
         and isinstance(node.func.value, ast.Name)
-        and node.func.value.id == "self"
+        and node.func.value.id == receiver
     ):
         return node
     return None
@@ -118,7 +119,7 @@ def _parameter_read(node: ast.expr, scope: Scope) -> Known | _Unknown:
         and node.func.attr == "get_parameter_value"
     ):
         node = node.func.value
-    call = _self_call(node)
+    call = _self_call(node, scope.node)
     if call is None or not call.args:
         return UNKNOWN
     method = call.func.attr  # type: ignore[attr-defined]
@@ -151,7 +152,7 @@ def _method_result(call: ast.Call, scope: Scope) -> Known | _Unknown:
         if not isinstance(value, Known):
             return UNKNOWN
         names[param] = value
-    inner = Scope({**scope.names, **names}, scope.parameters, scope.methods, scope.depth + 1)
+    inner = Scope({**scope.names, **names}, scope.parameters, scope.methods, scope.depth + 1, scope.node)
     return run_body(method.body, inner)
 
 

@@ -213,7 +213,9 @@ class _LaunchFile:
         return Location(self.file, getattr(node, "lineno", None), getattr(node, "col_offset", 0) + 1)
 
     def warn(self, message: str, node: ast.AST) -> None:
-        self.warnings.append(Diagnostic("warning", message, self.at(node)))
+        diagnostic = Diagnostic("warning", message, self.at(node))
+        if diagnostic not in self.warnings:  # a pushed namespace is read once per node of its group
+            self.warnings.append(diagnostic)
 
     def called(self, call: ast.Call) -> str:
         """The last part of the name ``call`` calls (``Node``, ``GroupAction``...)."""

@@ -540,7 +540,7 @@ class _Reader:
         parameters = self.parameters([function], dict(self.constants))
         for index, (variable, fact) in enumerate(made.items()):
             fact.parameters = parameters
-            scope = Scope(dict(self.constants), fact.parameters, {})
+            scope = Scope(dict(self.constants), fact.parameters, {}, node=variable)
             self.block(function.body, scope, fact, (variable,), {}, in_loop=False)
             found.append((function.name if index == 0 else f"{function.name}:{variable}", fact))
         return found

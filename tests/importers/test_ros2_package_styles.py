@@ -1,0 +1,185 @@
+"""``import ros2-package`` on the other ways rclpy users write nodes, packages and launch files
+(``tests/data/ros2_styles``): lifecycle nodes, names given to a constructor, class attributes,
+QoS profiles bound to names, several nodes in one ``main``, a script with its node at module level
+installed by CMake, entry points in ``setup.cfg``, actions, launch groups and arguments."""
+
+from __future__ import annotations
+
+import ast
+from decimal import Decimal
+from pathlib import Path
+
+import pytest
+
+from rosaadl.importers.ros2_package import read_ros2_packages
+from rosaadl.importers.ros2_package.evaluation import Scope
+from rosaadl.importers.ros2_package.launching import cmake_programs, launch_actions, setup_cfg_entry_points
+from rosaadl.importers.ros2_package.node_classes import SCRIPT, dotted, module_imports
+from rosaadl.importers.ros2_package.qos import read_qos
+
+STYLES = Path(__file__).resolve().parent.parent / "data" / "ros2_styles"
+
+
+@pytest.fixture(scope="module")
+def styles():
+    warnings: list = []
+    return read_ros2_packages([STYLES], warnings), warnings
+
+
+def _components(project) -> dict:
+    return {c.name: c for p in project.software.packages for c in p.components}
+
+
+def _ports(component) -> list[tuple]:
+    props = {p.key: p.value for p in component.properties}
+    return sorted(
+        (
+            p.eClass.name,
+            p.type,
+            props[f"{p.name}.Topic"],
+            props.get(f"{p.name}.Depth"),
+            props.get(f"{p.name}.Reliability"),
+        )
+        for p in component.ports
+    )
+
+
+def _timers(component) -> list[Decimal | None]:
+    return [t.period if t.eIsSet("period") else None for t in component.timers]
+
+
+def _where(warnings) -> dict[tuple[str, int | None], list[str]]:
+    found: dict = {}
+    for w in warnings:
+        found.setdefault((Path(w.location.file).name, w.location.line), []).append(w.message)
+    return found
+
+
+def test_every_style_is_read_with_its_names_qos_and_periods(styles):
+    project, _ = styles
+    comps = _components(project)
+    assert sorted(comps) == ["heartbeat", "imu_relay", "lighthouse", "mission", "ping", "pong"]
+    # a LifecycleNode named by main, in the namespace it gives itself; 1 / RATE_HZ (a class attribute)
+    assert _ports(comps["lighthouse"]) == [("Publisher", "std_msgs/Header", "/fleet/beacon", "1", "reliable")]
+    assert _timers(comps["lighthouse"]) == [Decimal("0.25")]
+    # topics from the constructor's argument and default; QoS through names; the launch group's namespace
+    assert _ports(comps["imu_relay"]) == [
+        ("Publisher", "sensor_msgs/Imu", "/rover/audit", None, None),
+        ("Publisher", "sensor_msgs/Imu", "/rover/relayed", "5", "best_effort"),
+        ("Subscriber", "sensor_msgs/Imu", "/rover/imu/raw", "3", "best_effort"),
+    ]
+    # two nodes of one main, each with its own ports; the second in its own namespace
+    assert _ports(comps["ping"]) == [("Publisher", "std_msgs/String", "/ball", "10", "reliable")]
+    assert _timers(comps["ping"]) == [Decimal("0.25")]
+    assert _ports(comps["pong"]) == [("Subscriber", "std_msgs/String", "/court/ball", "10", "reliable")]
+    # a module-level script installed by CMake; its period parameter set by a launch argument's default
+    assert _ports(comps["heartbeat"]) == [("Publisher", "std_msgs/Empty", "/rover/pulse", "1", "reliable")]
+    assert _timers(comps["heartbeat"]) == [Decimal("0.5")]
+    assert _ports(comps["mission"]) == [("Server", "example_interfaces/Trigger", "/abort", None, None)]
+    [deployment] = project.deployments
+    assert sorted(n.name for n in deployment.nodes) == ["heartbeat", "imu_relay", "ping", "pong"]
+
+
+def test_what_the_styles_leave_out_is_named_at_its_line(styles):
+    _, warnings = styles
+    where = _where(warnings)
+    assert "action server 'plan' example_interfaces/Fibonacci" in where[("mission.py", 13)][0]
+    assert "action client 'replan'" in where[("mission.py", 14)][0]
+    assert "the QoS tuned is not known" in where[("relay.py", 19)][0]  # changed after it was made
+    assert "C/C++ source" in where[("package.xml", None)][0]
+    assert where[("styles.launch.py", 16)] == ["launch argument 'robot' is taken at its default 'rover'"]
+    assert "default '0.5'" in where[("styles.launch.py", 21)][0]
+    assert any("under a condition" in m for m in where[("styles.launch.py", 24)])
+    assert "included launch description" in where[("styles.launch.py", 25)][0]
+    assert all(w.severity == "warning" for w in warnings)
+
+
+@pytest.mark.parametrize(
+    ("source", "expected"),
+    [
+        ("10", {"depth": "10", "reliability": "reliable", "durability": "volatile"}),
+        ("qos_profile_sensor_data", {"depth": "5", "reliability": "best_effort", "durability": "volatile"}),
+        (
+            "QoSPresetProfiles.PARAMETERS.value",
+            {"depth": "1000", "reliability": "reliable", "durability": "volatile"},
+        ),
+        ("QoSProfile(depth=4)", {"depth": "4", "reliability": "reliable", "durability": "volatile"}),
+        (
+            "QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)",
+            {"depth": "1", "reliability": "reliable", "durability": "transient_local"},
+        ),
+        (
+            "QoSProfile(history=QoSHistoryPolicy.RMW_QOS_POLICY_HISTORY_KEEP_ALL)",
+            {"reliability": "reliable", "durability": "volatile"},
+        ),
+        ("QoSProfile(history=HistoryPolicy.KEEP_LAST)", None),  # rclpy refuses it: no depth
+        ("QoSProfile(depth=3, reliability=ReliabilityPolicy.SOMETIMES)", None),
+        ("QoSProfile(**settings)", None),
+        ("make_qos()", None),
+    ],
+)
+def test_qos_forms_as_rclpy_reads_them(source, expected):
+    text = "from rclpy.qos import QoSProfile, QoSPresetProfiles, qos_profile_sensor_data\n"
+    imports = module_imports(ast.parse(text))
+    found = read_qos(ast.parse(source, mode="eval").body, Scope(), lambda e: dotted(e, imports))
+    assert (found.as_dict() if found is not None else None) == expected
+
+
+def test_nested_groups_push_their_namespaces_and_an_absolute_one_stays():
+    text = (
+        "from launch import LaunchDescription\n"
+        "from launch.actions import GroupAction\n"
+        "from launch_ros.actions import Node, PushROSNamespace\n"
+        "def generate_launch_description():\n"
+        "    inner = GroupAction(actions=[PushROSNamespace('arm'), Node(package='p', executable='a'),\n"
+        "                                 Node(package='p', executable='b', namespace='/fixed')])\n"
+        "    return LaunchDescription([\n"
+        "        Node(package='p', executable='c', namespace='before'),\n"
+        "        GroupAction([Node(package='p', executable='d'), PushROSNamespace('/robot'), inner,\n"
+        "                     PushROSNamespace(unknown)]),\n"
+        "    ])\n"
+    )
+    warnings: list = []
+    actions = launch_actions(ast.parse(text), "x.launch.py", warnings)
+    assert sorted((a.executable, a.namespace) for a in actions) == [
+        ("a", "robot/arm"),
+        ("b", "/fixed"),
+        ("c", "before"),
+        ("d", ""),
+    ]
+    assert warnings == []
+
+
+def test_setup_cfg_and_cmake_programs_read_or_located(tmp_path):
+    warnings: list = []
+    entries = setup_cfg_entry_points(
+        "[options.entry_points]\nconsole_scripts =\n    talk = pkg.talker:main\n    broken\n",
+        "setup.cfg",
+        warnings,
+    )
+    assert [(e.executable, e.module, e.function) for e in entries] == [("talk", "pkg.talker", "main")]
+    assert "'broken'" in warnings[0].message
+    warnings.clear()
+    assert setup_cfg_entry_points("[options.entry_points\nx", "setup.cfg", warnings) == []
+    assert warnings[0].location.file == "setup.cfg" and "does not read" in warnings[0].message
+    warnings.clear()
+    cmake = (
+        "project(x)\ninstall(PROGRAMS nodes/a.py ${EXTRA} README.md\n  DESTINATION lib/${PROJECT_NAME})\n"
+        "install(PROGRAMS tools/b.py DESTINATION bin)\n"
+    )
+    entries = cmake_programs(cmake, "CMakeLists.txt", warnings)
+    assert [(e.executable, e.module, e.function) for e in entries] == [("a.py", "nodes.a", SCRIPT)]
+    assert [(w.location.line, "not a literal path" in w.message) for w in warnings] == [(2, True)]
+    # a package whose only manifest is fine but whose setup.cfg is not: the node is still read
+    package = tmp_path / "p"
+    (package / "p").mkdir(parents=True)
+    (package / "package.xml").write_text("<package format='3'><name>p</name></package>")
+    (package / "setup.cfg").write_bytes(b"[options.entry_points]\n\xff\xfe")
+    (package / "p" / "n.py").write_text(
+        "import rclpy\nfrom std_msgs.msg import String\n"
+        "node = rclpy.create_node('n')\nnode.create_publisher(String, 't', 1)\n"
+    )
+    warnings.clear()
+    project = read_ros2_packages([package], warnings)
+    assert sorted(_components(project)) == ["n"]
+    assert any(w.location.file.endswith("setup.cfg") and "UTF-8" in w.message for w in warnings)
