@@ -11,8 +11,10 @@ name bound once in it) is a warning at its line and is left out. As ``launch`` r
 - a ``GroupAction`` whose actions hold ``PushRosNamespace('ns')`` (``PushROSNamespace``) puts the
   nodes after it in the group, nested groups outside in, under that namespace (a node's own
   absolute namespace excepted);
+- a ``LifecycleNode`` action is a node like ``Node``;
 - ``IncludeLaunchDescription`` is not followed (the included file is read as a launch file of
-  its own package) and a ``condition=`` is not decided: both are named in a warning.
+  its own package), ``ExecuteProcess`` and composable-node containers are not read, and a
+  ``condition=`` is not decided: each is named in a warning.
 
 XML and YAML launch files are named in a warning.
 """
@@ -39,7 +41,21 @@ __all__ = [
     "module_constants",
 ]
 
-_LAUNCH_NODE = ("launch_ros.actions.Node", "launch_ros.actions.node.Node")
+_LAUNCH_NODE = (
+    "launch_ros.actions.Node",
+    "launch_ros.actions.node.Node",
+    "launch_ros.actions.LifecycleNode",
+    "launch_ros.actions.lifecycle_node.LifecycleNode",
+)
+#: Launch actions that start what is not read here, and why.
+_NOT_FOLLOWED = {
+    "ExecuteProcess": "a process started from a command line is not read; what it starts is not part "
+    "of this deployment",
+    "ComposableNodeContainer": "composable nodes (C++ components) are not read; left out",
+    "LoadComposableNodes": "composable nodes (C++ components) are not read; left out",
+    "IncludeLaunchDescription": "an included launch description is not followed here (a launch file of "
+    "a package read is read on its own); its nodes are not part of this deployment",
+}
 _PUSH_NAMESPACE = ("PushRosNamespace", "PushROSNamespace")
 
 
@@ -417,12 +433,8 @@ def launch_actions(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> l
         if not isinstance(node, ast.Call):
             continue
         called = launch.called(node)
-        if called == "IncludeLaunchDescription":
-            launch.warn(
-                "an included launch description is not followed here (a launch file of a package "
-                "read is read on its own); its nodes are not part of this deployment",
-                node,
-            )
+        if called in _NOT_FOLLOWED:
+            launch.warn(f"{called}: {_NOT_FOLLOWED[called]}", node)
             continue
         if dotted(node.func, launch.imports) not in _LAUNCH_NODE or _forwards(node):
             continue  # a wrapper's own call: its arguments are its caller's

@@ -58,10 +58,11 @@ def _where(warnings) -> dict[tuple[str, int | None], list[str]]:
 def test_every_style_is_read_with_its_names_qos_and_periods(styles):
     project, _ = styles
     comps = _components(project)
-    assert sorted(comps) == ["heartbeat", "imu_relay", "lighthouse", "mission", "ping", "pong"]
-    # a LifecycleNode named by main, in the namespace it gives itself; 1 / RATE_HZ (a class attribute)
-    assert _ports(comps["lighthouse"]) == [("Publisher", "std_msgs/Header", "/fleet/beacon", "1", "reliable")]
-    assert _timers(comps["lighthouse"]) == [Decimal("0.25")]
+    assert sorted(comps) == ["beacon", "heartbeat", "imu_relay", "mission", "ping", "pong"]
+    # a LifecycleNode named by main (renamed by the launch file's LifecycleNode action), in the
+    # namespace it gives itself; its period 1 / RATE_HZ (a class attribute)
+    assert _ports(comps["beacon"]) == [("Publisher", "std_msgs/Header", "/fleet/beacon", "1", "reliable")]
+    assert _timers(comps["beacon"]) == [Decimal("0.25")]
     # topics from the constructor's argument and default; QoS through names; the launch group's namespace
     assert _ports(comps["imu_relay"]) == [
         ("Publisher", "sensor_msgs/Imu", "/rover/audit", None, None),
@@ -77,7 +78,7 @@ def test_every_style_is_read_with_its_names_qos_and_periods(styles):
     assert _timers(comps["heartbeat"]) == [Decimal("0.5")]
     assert _ports(comps["mission"]) == [("Server", "example_interfaces/Trigger", "/abort", None, None)]
     [deployment] = project.deployments
-    assert sorted(n.name for n in deployment.nodes) == ["heartbeat", "imu_relay", "ping", "pong"]
+    assert sorted(n.name for n in deployment.nodes) == ["beacon", "heartbeat", "imu_relay", "ping", "pong"]
 
 
 def test_what_the_styles_leave_out_is_named_at_its_line(styles):
@@ -91,6 +92,7 @@ def test_what_the_styles_leave_out_is_named_at_its_line(styles):
     assert "default '0.5'" in where[("styles.launch.py", 21)][0]
     assert any("under a condition" in m for m in where[("styles.launch.py", 24)])
     assert "included launch description" in where[("styles.launch.py", 25)][0]
+    assert "ExecuteProcess" in where[("styles.launch.py", 27)][0]
     assert all(w.severity == "warning" for w in warnings)
 
 

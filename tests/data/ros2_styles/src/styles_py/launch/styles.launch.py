@@ -1,9 +1,9 @@
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument, GroupAction, IncludeLaunchDescription
+from launch.actions import DeclareLaunchArgument, ExecuteProcess, GroupAction, IncludeLaunchDescription
 from launch.conditions import IfCondition
 from launch.launch_description_sources import PythonLaunchDescriptionSource
 from launch.substitutions import LaunchConfiguration
-from launch_ros.actions import Node, PushRosNamespace
+from launch_ros.actions import LifecycleNode, Node, PushRosNamespace
 
 
 def generate_launch_description():
@@ -23,4 +23,6 @@ def generate_launch_description():
         ]),
         Node(package='styles_py', executable='pair', condition=IfCondition('true')),
         IncludeLaunchDescription(PythonLaunchDescriptionSource('more.launch.py')),
+        LifecycleNode(package='styles_py', executable='beacon', name='beacon', namespace=''),
+        ExecuteProcess(cmd=['ros2', 'bag', 'record', '-a']),
     ])
