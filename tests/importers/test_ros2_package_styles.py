@@ -88,11 +88,11 @@ def test_what_the_styles_leave_out_is_named_at_its_line(styles):
     assert "action client 'replan'" in where[("mission.py", 14)][0]
     assert "the QoS tuned is not known" in where[("relay.py", 19)][0]  # changed after it was made
     assert "C/C++ source" in where[("package.xml", None)][0]
-    assert where[("styles.launch.py", 16)] == ["launch argument 'robot' is taken at its default 'rover'"]
-    assert "default '0.5'" in where[("styles.launch.py", 21)][0]
-    assert any("under a condition" in m for m in where[("styles.launch.py", 24)])
-    assert "included launch description" in where[("styles.launch.py", 25)][0]
-    assert "ExecuteProcess" in where[("styles.launch.py", 27)][0]
+    assert where[("styles.launch.py", 18)] == ["launch argument 'robot' is taken at its default 'rover'"]
+    assert "default '0.5'" in where[("styles.launch.py", 23)][0]
+    assert any("under a condition" in m for m in where[("styles.launch.py", 27)])
+    assert "included launch description" in where[("styles.launch.py", 28)][0]
+    assert "ExecuteProcess" in where[("styles.launch.py", 30)][0]
     assert all(w.severity == "warning" for w in warnings)
 
 

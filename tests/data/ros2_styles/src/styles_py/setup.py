@@ -1,3 +1,3 @@
 from setuptools import setup
 
-setup(name='styles_py', packages=['styles_py'])
+setup(name="styles_py", packages=["styles_py"])

@@ -7,22 +7,26 @@ from launch_ros.actions import LifecycleNode, Node, PushRosNamespace
 
 
 def generate_launch_description():
-    robot = LaunchConfiguration('robot')
-    relay = Node(package='styles_py', executable='relay', name='imu_relay')
-    return LaunchDescription([
-        DeclareLaunchArgument('robot', default_value='rover'),
-        DeclareLaunchArgument('beat', default_value='0.5'),
-        GroupAction([
-            PushRosNamespace(robot),
-            relay,
-            Node(
-                package='styles_scripts',
-                executable='heartbeat.py',
-                parameters=[{'period': LaunchConfiguration('beat')}],
+    robot = LaunchConfiguration("robot")
+    relay = Node(package="styles_py", executable="relay", name="imu_relay")
+    return LaunchDescription(
+        [
+            DeclareLaunchArgument("robot", default_value="rover"),
+            DeclareLaunchArgument("beat", default_value="0.5"),
+            GroupAction(
+                [
+                    PushRosNamespace(robot),
+                    relay,
+                    Node(
+                        package="styles_scripts",
+                        executable="heartbeat.py",
+                        parameters=[{"period": LaunchConfiguration("beat")}],
+                    ),
+                ]
             ),
-        ]),
-        Node(package='styles_py', executable='pair', condition=IfCondition('true')),
-        IncludeLaunchDescription(PythonLaunchDescriptionSource('more.launch.py')),
-        LifecycleNode(package='styles_py', executable='beacon', name='beacon', namespace=''),
-        ExecuteProcess(cmd=['ros2', 'bag', 'record', '-a']),
-    ])
+            Node(package="styles_py", executable="pair", condition=IfCondition("true")),
+            IncludeLaunchDescription(PythonLaunchDescriptionSource("more.launch.py")),
+            LifecycleNode(package="styles_py", executable="beacon", name="beacon", namespace=""),
+            ExecuteProcess(cmd=["ros2", "bag", "record", "-a"]),
+        ]
+    )

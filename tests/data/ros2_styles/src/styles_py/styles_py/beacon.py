@@ -1,17 +1,18 @@
 """A lifecycle node named by its caller, its rate a class attribute."""
+
 import rclpy
-from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 import std_msgs.msg
+from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 
 
 class Beacon(LifecycleNode):
     RATE_HZ = 4
 
     def __init__(self, name, **kwargs):
-        super().__init__(name, namespace='fleet', **kwargs)
+        super().__init__(name, namespace="fleet", **kwargs)
 
     def on_configure(self, state):
-        self.out = self.create_lifecycle_publisher(std_msgs.msg.Header, 'beacon', 1)
+        self.out = self.create_lifecycle_publisher(std_msgs.msg.Header, "beacon", 1)
         self.tick = self.create_timer(1.0 / self.RATE_HZ, self.send)
         return TransitionCallbackReturn.SUCCESS
 
@@ -21,4 +22,4 @@ class Beacon(LifecycleNode):
 
 def main():
     rclpy.init()
-    rclpy.spin(Beacon('lighthouse'))
+    rclpy.spin(Beacon("lighthouse"))

@@ -1,18 +1,18 @@
 """An action server and an action client, beside a plain service."""
+
+import rclpy
 from example_interfaces.action import Fibonacci
 from example_interfaces.srv import Trigger
-import rclpy
 from rclpy.action import ActionClient, ActionServer
 from rclpy.node import Node
 
 
 class Mission(Node):
-
     def __init__(self):
-        super().__init__('mission')
-        self.goals = ActionServer(self, Fibonacci, 'plan', self.execute)
-        self.helper = ActionClient(self, Fibonacci, 'replan')
-        self.abort = self.create_service(Trigger, 'abort', self.on_abort)
+        super().__init__("mission")
+        self.goals = ActionServer(self, Fibonacci, "plan", self.execute)
+        self.helper = ActionClient(self, Fibonacci, "replan")
+        self.abort = self.create_service(Trigger, "abort", self.on_abort)
 
     def execute(self, goal):
         return Fibonacci.Result()
