@@ -53,6 +53,9 @@ _NOT_FOLLOWED = {
     "of this deployment",
     "ComposableNodeContainer": "composable nodes (C++ components) are not read; left out",
     "LoadComposableNodes": "composable nodes (C++ components) are not read; left out",
+    "SetRemap": "a remapping for the nodes after it is not read",
+    "SetParameter": "a parameter for the nodes after it is not read",
+    "SetParametersFromFile": "parameters for the nodes after it are not read",
     "IncludeLaunchDescription": "an included launch description is not followed here (a launch file of "
     "a package read is read on its own); its nodes are not part of this deployment",
 }
@@ -424,10 +427,33 @@ def _namespace(pushed: list[str | None], own: str) -> str | None:
     return "/".join(parts)
 
 
+_LOOPS = (ast.For, ast.AsyncFor, ast.While, ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp)
+
+
+def _repeated(tree: ast.Module) -> dict[int, str]:
+    """Node calls (by ``id``) that may run several times: in a loop or comprehension, or in a
+    module function called more than once → why."""
+    calls: dict[str, int] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+            calls[node.func.id] = calls.get(node.func.id, 0) + 1
+    found: dict[int, str] = {}
+    for stmt in tree.body:
+        if isinstance(stmt, ast.FunctionDef) and calls.get(stmt.name, 0) > 1:
+            for node in ast.walk(stmt):
+                found[id(node)] = f"in {stmt.name}(), which the file calls {calls[stmt.name]} times"
+    for loop in ast.walk(tree):
+        if isinstance(loop, _LOOPS):
+            for node in ast.walk(loop):
+                found[id(node)] = "in a loop"
+    return found
+
+
 def launch_actions(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> list[LaunchAction]:
     """The ``launch_ros.actions.Node(...)`` calls of a Python launch file (see the module docstring)."""
     launch = _LaunchFile(tree, file, warnings)
     namespaces = _group_namespaces(tree, launch)
+    repeated = _repeated(tree)
     found: list[LaunchAction] = []
     for node in ast.walk(tree):
         if not isinstance(node, ast.Call):
@@ -442,6 +468,13 @@ def launch_actions(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> l
         package, executable = launch.text(args.get("package")), launch.text(args.get("executable"))
         if package is None or executable is None:
             launch.warn("a launch Node whose package or executable is not literal; left out", node)
+            continue
+        if id(node) in repeated:
+            launch.warn(
+                f"{package}/{executable} is launched {repeated[id(node)]}: how many nodes and their "
+                "names are not known; left out",
+                node,
+            )
             continue
         if "condition" in args:
             launch.warn(

@@ -353,27 +353,39 @@ class _Reader:
         attributes: dict[str, Known],
         *,
         in_loop: bool,
+        under: str | None = None,
     ) -> None:
-        """Read the create_* calls of ``body`` in order, knowing the names assigned before each."""
+        """Read the create_* calls of ``body`` in order, knowing the names assigned before each;
+        ``under``: the condition the body runs under, if any."""
         names = dict(scope.names)
         for stmt in body:
             current = scope.with_names(names)
             if isinstance(stmt, (ast.For, ast.AsyncFor, ast.While)):
-                self.block(stmt.body, current, fact, receivers, attributes, in_loop=True)
-                self.block(stmt.orelse, current, fact, receivers, attributes, in_loop=in_loop)
+                self.block(stmt.body, current, fact, receivers, attributes, in_loop=True, under=under)
+                self.block(stmt.orelse, current, fact, receivers, attributes, in_loop=in_loop, under=under)
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.If, ast.With, ast.AsyncWith, ast.Try)):
-                for part in _blocks(stmt):
-                    self.block(part, current, fact, receivers, attributes, in_loop=in_loop)
+                for part, condition in _blocks(stmt):
+                    inner = (
+                        under
+                        if condition is None
+                        else condition
+                        if under is None
+                        else f"{under} and {condition}"
+                    )
+                    self.block(part, current, fact, receivers, attributes, in_loop=in_loop, under=inner)
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
                 continue
+            looped = _comprehended(stmt)
             for call in _calls(stmt):
-                self.create(call, current, fact, receivers, in_loop=in_loop)
+                self.create(
+                    call, current, fact, receivers, in_loop=in_loop or id(call) in looped, under=under
+                )
             if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1:
                 target = stmt.targets[0]
                 known = self.value(stmt.value, current)
@@ -395,7 +407,14 @@ class _Reader:
                     _forget_changed(target, names)
 
     def create(
-        self, call: ast.Call, scope: Scope, fact: NodeFact, receivers: tuple[str, ...], *, in_loop: bool
+        self,
+        call: ast.Call,
+        scope: Scope,
+        fact: NodeFact,
+        receivers: tuple[str, ...],
+        *,
+        in_loop: bool,
+        under: str | None = None,
     ) -> None:
         func = call.func
         if not (isinstance(func, ast.Attribute) and func.attr in CREATES):
@@ -407,6 +426,8 @@ class _Reader:
         if in_loop:
             self.warn(f"{func.attr} in a loop: how many it makes is not known; not imported", call)
             return
+        if under is not None:
+            self.warn(f"{func.attr} runs only when {under}: imported as if it always did", call)
         if kind == "Timer":
             self.timer(call, scope, fact, names)
             return
@@ -709,11 +730,32 @@ def _calls(stmt: ast.stmt) -> list[ast.Call]:
     return found
 
 
-def _blocks(stmt: ast.stmt) -> list[list[ast.stmt]]:
-    parts = [getattr(stmt, name, None) or [] for name in ("body", "orelse", "finalbody")]
+def _blocks(stmt: ast.stmt) -> list[tuple[list[ast.stmt], str | None]]:
+    """The blocks of a compound statement, each with the condition it runs under (None: as
+    often as the statement itself). ``if __name__ == '__main__':`` is no condition: the module
+    runs as a script."""
+    if isinstance(stmt, ast.If):
+        test = ast.unparse(stmt.test)
+        if test in ("__name__ == '__main__'", '__name__ == "__main__"'):
+            return [(stmt.body, None), (stmt.orelse, "not " + test)]
+        return [(stmt.body, test), (stmt.orelse, f"not ({test})")]
+    parts = [(getattr(stmt, name, None) or [], None) for name in ("body", "finalbody")]
+    if isinstance(stmt, ast.Try):
+        parts.append((stmt.orelse, "no exception is raised"))
     for handler in getattr(stmt, "handlers", None) or []:
-        parts.append(handler.body)
+        parts.append(
+            (handler.body, f"{ast.unparse(handler.type) if handler.type else 'an exception'} is raised")
+        )
     return parts
+
+
+def _comprehended(stmt: ast.stmt) -> set[int]:
+    """The ids of the calls in ``stmt`` made inside a comprehension (once per item)."""
+    found: set[int] = set()
+    for node in ast.walk(stmt):
+        if isinstance(node, (ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp)):
+            found.update(id(n) for n in ast.walk(node) if isinstance(n, ast.Call))
+    return found
 
 
 def _mark_parents(tree: ast.Module) -> None:

@@ -14,7 +14,7 @@ import pytest
 from rosaadl.importers.ros2_package import read_ros2_packages
 from rosaadl.importers.ros2_package.evaluation import Scope
 from rosaadl.importers.ros2_package.launching import cmake_programs, launch_actions, setup_cfg_entry_points
-from rosaadl.importers.ros2_package.node_classes import SCRIPT, dotted, module_imports
+from rosaadl.importers.ros2_package.node_classes import SCRIPT, dotted, module_imports, read_module
 from rosaadl.importers.ros2_package.qos import read_qos
 
 STYLES = Path(__file__).resolve().parent.parent / "data" / "ros2_styles"
@@ -185,3 +185,49 @@ def test_setup_cfg_and_cmake_programs_read_or_located(tmp_path):
     project = read_ros2_packages([package], warnings)
     assert sorted(_components(project)) == ["n"]
     assert any(w.location.file.endswith("setup.cfg") and "UTF-8" in w.message for w in warnings)
+
+
+def test_conditional_and_repeated_creations_are_named_at_their_line():
+    text = (
+        "from rclpy.node import Node\n"
+        "from std_msgs.msg import String\n"
+        "class Fan(Node):\n"
+        "    def __init__(self, debug=False):\n"
+        "        super().__init__('fan')\n"
+        "        if debug:\n"
+        "            self.create_publisher(String, 'debug', 1)\n"
+        "        self.outs = [self.create_publisher(String, f'out{i}', 1) for i in range(3)]\n"
+        "        try:\n"
+        "            self.create_timer(0.1, self.cb)\n"
+        "        except RuntimeError:\n"
+        "            self.create_timer(1.0, self.cb)\n"
+        "    def cb(self):\n"
+        "        pass\n"
+    )
+    warnings: list = []
+    [fan] = read_module(ast.parse(text), "fan.py", "p", warnings).nodes
+    assert [(p.topic, p.location.line) for p in fan.ports] == [("debug", 7)]
+    assert [t.period for t in fan.timers] == [Decimal("0.1"), Decimal("1.0")]
+    where = {w.location.line: w.message for w in warnings}
+    assert sorted(where) == [7, 8, 12]
+    assert "runs only when debug" in where[7]
+    assert "in a loop" in where[8]
+    assert "RuntimeError is raised" in where[12]
+
+
+def test_launch_nodes_made_several_times_and_group_settings_are_named():
+    text = (
+        "from launch import LaunchDescription\n"
+        "from launch_ros.actions import Node, SetRemap\n"
+        "def robot(name):\n"
+        "    return Node(package='p', executable='e', name=name)\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([robot('a'), robot('b'), SetRemap(src='x', dst='y'),\n"
+        "        *[Node(package='p', executable='f') for _ in range(2)]])\n"
+    )
+    warnings: list = []
+    assert launch_actions(ast.parse(text), "x.launch.py", warnings) == []
+    where = {w.location.line: w.message for w in warnings}
+    assert "launched in robot(), which the file calls 2 times" in where[4]
+    assert where[6].startswith("SetRemap:")
+    assert "p/f is launched in a loop" in where[7]
