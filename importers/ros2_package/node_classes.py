@@ -450,7 +450,7 @@ class _Reader:
         qos = {}
         if "qos_profile" in names:
             qos = self.qos(_argument(call, names, "qos_profile"), scope, call)
-        port = PortFact(kind, type_name, topic.value, self.at(call), qos)
+        port = PortFact(kind, type_name, topic.value, self.at(call), qos, "", topic.parameter, topic.derived)
         port.name = _assigned_attribute(call, self.tree) or ""
         fact.ports.append(port)
 

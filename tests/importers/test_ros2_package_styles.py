@@ -58,7 +58,10 @@ def _where(warnings) -> dict[tuple[str, int | None], list[str]]:
 def test_every_style_is_read_with_its_names_qos_and_periods(styles):
     project, _ = styles
     comps = _components(project)
-    assert sorted(comps) == ["beacon", "heartbeat", "imu_relay", "mission", "ping", "pong"]
+    assert sorted(comps) == ["beacon", "heartbeat", "imu_relay", "mission", "named", "ping", "pong"]
+    # a topic named by a parameter's default, which the launch file sets; one computed from a
+    # parameter the launch file sets is left out (named in a warning)
+    assert _ports(comps["named"]) == [("Publisher", "std_msgs/String", "/health", "10", "reliable")]
     # a LifecycleNode named by main (renamed by the launch file's LifecycleNode action), in the
     # namespace it gives itself; its period 1 / RATE_HZ (a class attribute)
     assert _ports(comps["beacon"]) == [("Publisher", "std_msgs/Header", "/fleet/beacon", "1", "reliable")]
@@ -78,7 +81,14 @@ def test_every_style_is_read_with_its_names_qos_and_periods(styles):
     assert _timers(comps["heartbeat"]) == [Decimal("0.5")]
     assert _ports(comps["mission"]) == [("Server", "example_interfaces/Trigger", "/abort", None, None)]
     [deployment] = project.deployments
-    assert sorted(n.name for n in deployment.nodes) == ["beacon", "heartbeat", "imu_relay", "ping", "pong"]
+    assert sorted(n.name for n in deployment.nodes) == [
+        "beacon",
+        "heartbeat",
+        "imu_relay",
+        "named",
+        "ping",
+        "pong",
+    ]
 
 
 def test_what_the_styles_leave_out_is_named_at_its_line(styles):
@@ -93,6 +103,9 @@ def test_what_the_styles_leave_out_is_named_at_its_line(styles):
     assert any("under a condition" in m for m in where[("styles.launch.py", 27)])
     assert "included launch description" in where[("styles.launch.py", 28)][0]
     assert "ExecuteProcess" in where[("styles.launch.py", 30)][0]
+    assert (
+        "computed from parameter 'prefix', which the launch file sets" in where[("styles.launch.py", 31)][0]
+    )
     assert all(w.severity == "warning" for w in warnings)
 
 

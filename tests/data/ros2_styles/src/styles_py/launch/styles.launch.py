@@ -28,5 +28,10 @@ def generate_launch_description():
             IncludeLaunchDescription(PythonLaunchDescriptionSource("more.launch.py")),
             LifecycleNode(package="styles_py", executable="beacon", name="beacon", namespace=""),
             ExecuteProcess(cmd=["ros2", "bag", "record", "-a"]),
+            Node(
+                package="styles_py",
+                executable="named",
+                parameters=[{"out_topic": "health", "prefix": "x"}],
+            ),
         ]
     )
