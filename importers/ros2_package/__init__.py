@@ -14,6 +14,7 @@ listing every problem.
 
 from __future__ import annotations
 
+import ast
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -37,7 +38,8 @@ from rosaadl.importers.ros2_package.launching import (
     launch_actions,
     setup_cfg_entry_points,
 )
-from rosaadl.importers.ros2_package.node_classes import ModuleNodes, read_module
+from rosaadl.importers.ros2_package.node_classes import ModuleNodes, mark_assignments, read_module
+from rosaadl.importers.ros2_package.package_classes import abstract_classes, outside_classes, resolved_imports
 from rosaadl.importers.ros2_package.sources import (
     MAX_DEPTH,
     find_packages,
@@ -89,6 +91,7 @@ def _read_package(
 ) -> _Package:
     package = _Package(name)
     cpp = 0
+    sources: list[tuple[ast.Module, Path, Path]] = []  # the modules, read once all are parsed
     for path in package_files(folder):
         shown = str(path)
         relative = path.relative_to(folder)
@@ -125,11 +128,11 @@ def _read_package(
         if tree is None:
             continue
         try:
-            _read_source(package, tree, path, relative, facts, warnings)
+            if not _read_source(package, tree, path, relative, warnings):
+                sources.append((tree, path, relative))
         except RecursionError:
-            warnings.append(
-                Diagnostic("warning", "the source nests too deeply to be read; not read", Location(shown))
-            )
+            _too_deep(shown, warnings)
+    _read_modules(package, sources, facts, warnings)
     if cpp:
         warnings.append(
             Diagnostic(
@@ -142,10 +145,14 @@ def _read_package(
     return package
 
 
-def _read_source(
-    package: _Package, tree, path: Path, relative: Path, facts: SystemFacts, warnings: list[Diagnostic]
-) -> None:
-    """What one Python file of ``package`` says: entry points, launch actions or nodes."""
+def _too_deep(shown: str, warnings: list[Diagnostic]) -> None:
+    warnings.append(
+        Diagnostic("warning", "the source nests too deeply to be read; not read", Location(shown))
+    )
+
+
+def _read_source(package: _Package, tree, path: Path, relative: Path, warnings: list[Diagnostic]) -> bool:
+    """Read a ``setup.py`` (entry points) or a launch file of ``package``; False for a module."""
     shown = str(path)
     if relative.parts == ("setup.py",):
         package.entries.extend(entry_points(tree, shown, warnings))
@@ -153,8 +160,48 @@ def _read_source(
         name = path.name.removesuffix(".py").removesuffix(".launch")
         package.launches.append((name, launch_actions(tree, shown, warnings)))
     else:
-        found = read_module(tree, shown, package.name, warnings)
-        package.modules[_module_name(relative)] = found
+        return False
+    return True
+
+
+def _read_modules(
+    package: _Package,
+    sources: list[tuple[ast.Module, Path, Path]],
+    facts: SystemFacts,
+    warnings: list[Diagnostic],
+) -> None:
+    """The nodes of the package's modules, a class deriving from a node class of another module
+    of the package read with that class's methods (:mod:`.package_classes`)."""
+    modules: dict[str, tuple[ast.Module, dict[str, str], str]] = {}
+    for tree, path, relative in sources:
+        mark_assignments(tree)
+        name = _module_name(relative)
+        modules[name] = (
+            tree,
+            resolved_imports(tree, name, is_package=relative.name == "__init__.py"),
+            str(path),
+        )
+    try:
+        outside = outside_classes(modules)
+        abstract = abstract_classes(modules, outside)
+    except RecursionError:
+        outside, abstract = {}, set()
+    for tree, path, relative in sources:
+        name = _module_name(relative)
+        try:
+            found = read_module(
+                tree,
+                str(path),
+                package.name,
+                warnings,
+                imports=dict(modules[name][1]),
+                outside=outside,
+                bases_only={q.rpartition(".")[2] for q in abstract if q.rpartition(".")[0] == name},
+            )
+        except RecursionError:
+            _too_deep(str(path), warnings)
+            continue
+        package.modules[name] = found
         for node in found.nodes:
             facts.nodes[node.key] = node
 

@@ -12,6 +12,7 @@ such call outside a node is a warning at its file and line; nothing is guessed.
 from __future__ import annotations
 
 import ast
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from rosaadl.errors import Diagnostic, Location
@@ -20,7 +21,17 @@ from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, eva
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
 from rosaadl.importers.ros2_package.qos import read_qos
 
-__all__ = ["SCRIPT", "ModuleNodes", "read_module", "dotted", "module_imports"]
+__all__ = [
+    "SCRIPT",
+    "NODE_BASES",
+    "ModuleNodes",
+    "OutsideClass",
+    "read_module",
+    "module_constants",
+    "mark_assignments",
+    "dotted",
+    "module_imports",
+]
 
 #: The node methods that create the constructs read, and the positions of their arguments.
 CREATES = {
@@ -32,7 +43,7 @@ CREATES = {
     "create_timer": ("Timer", ("timer_period_sec", "callback")),
 }
 #: The node classes of rclpy (``rclpy.lifecycle.Node`` is ``LifecycleNode``).
-_NODE_BASES = (
+NODE_BASES = _NODE_BASES = (
     "rclpy.node.Node",
     "rclpy.lifecycle.Node",
     "rclpy.lifecycle.LifecycleNode",
@@ -46,6 +57,18 @@ _DEFINITIONS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Import,
 SCRIPT = "<script>"
 #: rclpy's action server and client (``rclpy.action``): ROSMOD has no action ports.
 _ACTIONS = {"ActionServer": "action server", "ActionClient": "action client"}
+
+
+@dataclass
+class OutsideClass:
+    """A node class of another module of the package, as a class of this module may derive from
+    it: the class, and what names mean in its module."""
+
+    cls: ast.ClassDef
+    imports: dict[str, str]
+    constants: dict[str, Known]
+    local: dict[str, ast.ClassDef]  #: the node classes of its module, by name
+    file: str = ""  #: its module's file
 
 
 @dataclass
@@ -111,19 +134,39 @@ def _argument(call: ast.Call, names: tuple[str, ...], wanted: str) -> ast.expr |
 
 
 class _Reader:
-    def __init__(self, tree: ast.Module, file: str, warnings: list[Diagnostic], package: str) -> None:
+    def __init__(
+        self,
+        tree: ast.Module,
+        file: str,
+        warnings: list[Diagnostic],
+        package: str,
+        imports: dict[str, str] | None = None,
+        outside: dict[str, OutsideClass] | None = None,
+        bases_only: set[str] | None = None,
+    ) -> None:
+        self.bases_only = bases_only or set()
         self.tree = tree
         self.file = file
         self.warnings = warnings
         self.package = package
-        self.imports = module_imports(tree)
+        self.imports = module_imports(tree) if imports is None else imports
+        self.outside = outside or {}
+        self.files = {
+            id(n): item.file
+            for item in self.outside.values()
+            for n in ast.walk(item.cls)
+            if item.file != file
+        }
         self.constants = self._module_constants()
         self.consumed: set[int] = set()  # ids of the create_* calls read into a node
         self.result = ModuleNodes()
 
     def at(self, node: ast.AST) -> Location:
+        """Where ``node`` is: in this module, or in the module of a base class it reads."""
         return Location(
-            file=self.file, line=getattr(node, "lineno", None), column=getattr(node, "col_offset", 0) + 1
+            file=self.files.get(id(node), self.file),
+            line=getattr(node, "lineno", None),
+            column=getattr(node, "col_offset", 0) + 1,
         )
 
     def warn(self, message: str, node: ast.AST) -> None:
@@ -167,49 +210,86 @@ class _Reader:
                     continue
                 for base in cls.bases:
                     name = dotted(base, self.imports)
-                    if name in _NODE_BASES or name in found:
+                    if name in _NODE_BASES or name in found or name in self.outside:
                         found[cls.name] = cls
                         changed = True
                         break
         return [c for c in classes if c.name in found]
 
+    def lineage(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> list[OutsideClass]:
+        """``cls`` and its node base classes, bases first: those of this module and those of
+        other modules of the package (:class:`OutsideClass`), each with its module's names."""
+        here = OutsideClass(cls, self.imports, self.constants, by_name)
+        found: list[OutsideClass] = []
+        seen: set[int] = set()
+
+        def visit(item: OutsideClass, depth: int) -> None:
+            if id(item.cls) in seen or depth > 32:
+                return
+            seen.add(id(item.cls))
+            for base in item.cls.bases:
+                name = dotted(base, item.imports)
+                if (
+                    isinstance(base, ast.Name)
+                    and base.id in item.local
+                    and item.local[base.id] is not item.cls
+                ):
+                    visit(
+                        OutsideClass(item.local[base.id], item.imports, item.constants, item.local), depth + 1
+                    )
+                elif name in self.outside:
+                    visit(self.outside[name], depth + 1)
+            found.append(item)
+
+        visit(here, 0)
+        return found
+
     def methods(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> dict[str, ast.FunctionDef]:
-        """The methods of ``cls``, with those of its node base classes of the module."""
+        """The methods of ``cls``, with those of its node base classes (see :meth:`lineage`)."""
         methods: dict[str, ast.FunctionDef] = {}
-        for base in cls.bases:
-            if isinstance(base, ast.Name) and base.id in by_name and by_name[base.id] is not cls:
-                methods.update(self.methods(by_name[base.id], by_name))
-        for stmt in cls.body:
-            if isinstance(stmt, ast.FunctionDef):
-                methods[stmt.name] = stmt
+        for item in self.lineage(cls, by_name):
+            for stmt in item.cls.body:
+                if isinstance(stmt, ast.FunctionDef):
+                    methods[stmt.name] = stmt
         return methods
 
     def class_attributes(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> dict[str, Known]:
-        """The class attributes of ``cls`` (and of its node base classes of the module), as the
-        methods read them: ``self.rate`` → ``Known(30)``. Inside methods a class attribute is
-        reached through ``self`` only, never by its bare name."""
-        found: dict[str, Known] = {}
-        for base in cls.bases:
-            if isinstance(base, ast.Name) and base.id in by_name and by_name[base.id] is not cls:
-                found.update(self.class_attributes(by_name[base.id], by_name))
-        body = {k.removeprefix("self."): v for k, v in found.items()}
-        for stmt in cls.body:
-            if (
-                isinstance(stmt, ast.Assign)
-                and len(stmt.targets) == 1
-                and isinstance(stmt.targets[0], ast.Name)
-            ):
-                body[stmt.targets[0].id] = self.value(stmt.value, Scope({**self.constants, **body}))
-            elif (
-                isinstance(stmt, ast.AnnAssign)
-                and isinstance(stmt.target, ast.Name)
-                and stmt.value is not None
-            ):
-                body[stmt.target.id] = self.value(stmt.value, Scope({**self.constants, **body}))
-            elif not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                for name in stored_names(stmt):
-                    body[name] = Known(UNKNOWN)
+        """The class attributes of ``cls`` (and of its node base classes), as the methods read
+        them: ``self.rate`` → ``Known(30)``. Inside methods a class attribute is reached through
+        ``self`` only, never by its bare name."""
+        body: dict[str, Known] = {}
+        for item in self.lineage(cls, by_name):
+            for stmt in item.cls.body:
+                if (
+                    isinstance(stmt, ast.Assign)
+                    and len(stmt.targets) == 1
+                    and isinstance(stmt.targets[0], ast.Name)
+                ):
+                    body[stmt.targets[0].id] = self.value(stmt.value, Scope({**item.constants, **body}))
+                elif (
+                    isinstance(stmt, ast.AnnAssign)
+                    and isinstance(stmt.target, ast.Name)
+                    and stmt.value is not None
+                ):
+                    body[stmt.target.id] = self.value(stmt.value, Scope({**item.constants, **body}))
+                elif not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    for name in stored_names(stmt):
+                        body[name] = Known(UNKNOWN)
         return {"self." + k: v for k, v in body.items()}
+
+    def borrowed_names(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> None:
+        """Give this module the imports and constants the other modules of ``cls``'s base classes
+        use (their methods are read here); a name they bind differently is known by neither."""
+        for item in self.lineage(cls, by_name):
+            if item.imports is self.imports:
+                continue
+            for table, other in ((self.imports, item.imports), (self.constants, item.constants)):
+                for name, value in other.items():
+                    if name not in table:
+                        table[name] = value  # type: ignore[assignment]
+                    elif table[name] != value:
+                        table.pop(name)
+                        table[name] = Known(UNKNOWN) if table is self.constants else "<conflict>"  # type: ignore[assignment]
 
     def read_class(
         self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef], bound: dict[str, Known]
@@ -228,8 +308,8 @@ class _Reader:
         fact.parameters = parameters
         scope = Scope(names, parameters, methods)
         init = methods.get("__init__")
-        init_scope = scope.with_names(bound)
-        node_name = self.node_name(init, init_scope, fact) if init is not None else None
+        chain = self.init_chain(cls, by_name, scope.with_names(bound))
+        node_name = self.node_name(*chain[-1], fact) if chain else None
         if node_name is None:
             self.warn(
                 f"class {cls.name}: the node name is not a literal given to Node.__init__; "
@@ -238,12 +318,36 @@ class _Reader:
             )
         else:
             fact.node_name = node_name
-        ordered = ([init] if init is not None else []) + [m for m in methods.values() if m is not init]
         attributes: dict[str, Known] = {}
-        for method in ordered:
-            start = init_scope if method is init else scope
+        for method, start in chain:  # the __init__ of the class, then those it calls up its bases
             self.block(method.body, start.with_names(attributes), fact, ("self",), attributes, in_loop=False)
+        for method in methods.values():
+            if method is not init:
+                self.block(
+                    method.body, scope.with_names(attributes), fact, ("self",), attributes, in_loop=False
+                )
         return fact
+
+    def init_chain(
+        self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef], scope: Scope
+    ) -> list[tuple[ast.FunctionDef, Scope]]:
+        """The ``__init__`` methods a node of ``cls`` runs, each with what its parameters are
+        known to be: the nearest one, then the base class's one its ``super().__init__(...)``
+        (or ``Base.__init__(self, ...)``) calls, and so on up to rclpy's ``Node``."""
+        inits = [
+            stmt
+            for item in reversed(self.lineage(cls, by_name))
+            for stmt in item.cls.body
+            if isinstance(stmt, ast.FunctionDef) and stmt.name == "__init__"
+        ]
+        chain: list[tuple[ast.FunctionDef, Scope]] = []
+        for index, init in enumerate(inits):
+            chain.append((init, scope))
+            call = _init_call(init)
+            if call is None or index + 1 >= len(inits):
+                break
+            scope = scope.with_names(_bind(inits[index + 1], call, scope, self.value))
+        return chain
 
     def constructor_arguments(self, cls: ast.ClassDef, init: ast.FunctionDef | None) -> dict[str, Known]:
         """The values of ``cls.__init__``'s parameters where this module makes the node
@@ -321,25 +425,15 @@ class _Reader:
 
     def node_name(self, init: ast.FunctionDef, scope: Scope, fact: NodeFact) -> str | None:
         """The name ``init`` gives ``Node.__init__`` (its ``namespace=`` goes to ``fact``)."""
-        for node in ast.walk(init):
-            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
-                continue
-            if node.func.attr != "__init__":
-                continue
-            receiver = node.func.value
-            args = list(node.args)
-            if not (
-                isinstance(receiver, ast.Call)
-                and isinstance(receiver.func, ast.Name)
-                and receiver.func.id == "super"
-            ):
-                args = args[1:]  # Node.__init__(self, name)
-            given = args[0] if args else _keyword(node, "node_name")
-            self.namespace(node, scope, fact)
-            value = evaluate(given, scope)
-            if isinstance(value, Known) and isinstance(value.value, str) and value.value:
-                return value.value
+        node = _init_call(init)
+        if node is None:
             return None
+        args = _init_arguments(node)
+        given = args[0] if args else _keyword(node, "node_name")
+        self.namespace(node, scope, fact)
+        value = evaluate(given, scope)
+        if isinstance(value, Known) and isinstance(value.value, str) and value.value:
+            return value.value
         return None
 
     # ------------------------------------------------------------------ statements
@@ -585,6 +679,11 @@ class _Reader:
         classes = self.node_classes()
         by_name = {c.name: c for c in classes}
         for cls in classes:
+            self.borrowed_names(cls, by_name)
+        for cls in classes:
+            if cls.name in self.bases_only:  # read with each class deriving from it
+                self.consumed.update(id(n) for n in ast.walk(cls) if isinstance(n, ast.Call))
+                continue
             bound = self.constructor_arguments(cls, self.methods(cls, by_name).get("__init__"))
             fact = self.read_class(cls, by_name, bound)
             self.result.nodes.append(fact)
@@ -638,6 +737,52 @@ class _Reader:
                     node,
                 )
         return self.result
+
+
+def _init_call(init: ast.FunctionDef) -> ast.Call | None:
+    """The first ``super().__init__(...)`` / ``Base.__init__(self, ...)`` call of ``init``."""
+    for node in ast.walk(init):
+        if (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Attribute)
+            and node.func.attr == "__init__"
+        ):
+            return node
+    return None
+
+
+def _init_arguments(call: ast.Call) -> list[ast.expr]:
+    """The positional arguments of an ``__init__`` call, ``self`` left out of ``Base.__init__(self, ...)``."""
+    receiver = call.func.value  # type: ignore[attr-defined]
+    by_super = (
+        isinstance(receiver, ast.Call) and isinstance(receiver.func, ast.Name) and receiver.func.id == "super"
+    )
+    return list(call.args) if by_super else list(call.args[1:])
+
+
+def _bind(
+    init: ast.FunctionDef, call: ast.Call, scope: Scope, value: Callable[[ast.expr | None, Scope], Known]
+) -> dict[str, Known]:
+    """What the parameters of ``init`` are when ``call`` calls it (a default where not given;
+    unknown past a ``*args``/``**kwargs`` argument)."""
+    params = [a.arg for a in init.args.posonlyargs + init.args.args][1:]
+    defaults = dict(zip(reversed(params), reversed(init.args.defaults), strict=False))
+    defaults.update({a.arg: d for a, d in zip(init.args.kwonlyargs, init.args.kw_defaults, strict=True) if d})
+    args = _init_arguments(call)
+    starred = any(isinstance(a, ast.Starred) for a in args) or any(k.arg is None for k in call.keywords)
+    given: dict[str, ast.expr] = dict(
+        zip(params, [a for a in args if not isinstance(a, ast.Starred)], strict=False)
+    )
+    given.update({k.arg: k.value for k in call.keywords if k.arg})
+    bound = {}
+    for name in params + [a.arg for a in init.args.kwonlyargs]:
+        if name in given:
+            bound[name] = value(given[name], scope)
+        elif starred:
+            bound[name] = Known(UNKNOWN)
+        else:
+            bound[name] = value(defaults.get(name), Scope(scope.names))
+    return bound
 
 
 def _forget_changed(target: ast.expr | None, names: dict[str, Known]) -> None:
@@ -758,13 +903,33 @@ def _comprehended(stmt: ast.stmt) -> set[int]:
     return found
 
 
-def _mark_parents(tree: ast.Module) -> None:
+def mark_assignments(tree: ast.Module) -> None:
+    """Mark each call assigned to a name in ``tree`` with its assignment (a port's or timer's
+    name in the code); done for every module of a package before any is read, since a class
+    reads the methods of its base classes in other modules."""
     for node in ast.walk(tree):
         if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call):
             node.value._rosaadl_parent = node  # type: ignore[attr-defined]
 
 
-def read_module(tree: ast.Module, file: str, package: str, warnings: list[Diagnostic]) -> ModuleNodes:
-    """The nodes ``tree`` (the module ``file`` of ROS package ``package``) defines."""
-    _mark_parents(tree)
-    return _Reader(tree, file, warnings, package).read()
+def read_module(
+    tree: ast.Module,
+    file: str,
+    package: str,
+    warnings: list[Diagnostic],
+    *,
+    imports: dict[str, str] | None = None,
+    outside: dict[str, OutsideClass] | None = None,
+    bases_only: set[str] | None = None,
+) -> ModuleNodes:
+    """The nodes ``tree`` (the module ``file`` of ROS package ``package``) defines; ``imports``:
+    what its names stand for (relative imports resolved), ``outside``: the node classes of the
+    package's other modules by qualified name (``pkg.base.BaseNode``); ``bases_only``: the
+    classes of the module that are bases of other node classes only (not nodes themselves)."""
+    mark_assignments(tree)
+    return _Reader(tree, file, warnings, package, imports, outside, bases_only).read()
+
+
+def module_constants(tree: ast.Module, imports: dict[str, str]) -> dict[str, Known]:
+    """The top-level names of a module bound to a known value (or QoS profile)."""
+    return _Reader(tree, "", [], "", imports).constants

@@ -58,7 +58,14 @@ def _where(warnings) -> dict[tuple[str, int | None], list[str]]:
 def test_every_style_is_read_with_its_names_qos_and_periods(styles):
     project, _ = styles
     comps = _components(project)
-    assert sorted(comps) == ["beacon", "heartbeat", "imu_relay", "mission", "named", "ping", "pong"]
+    assert sorted(comps) == ["beacon", "heartbeat", "imu_relay", "mission", "named", "ping", "pong", "walker"]
+    # a class deriving from a node class of another module: that class's __init__ runs with the
+    # arguments super().__init__ gives it; the base class is no node of its own
+    assert _ports(comps["walker"]) == [
+        ("Publisher", "geometry_msgs/Twist", "/cmd_vel", "10", "reliable"),
+        ("Publisher", "std_msgs/Empty", "/alive", "1", "reliable"),
+    ]
+    assert _timers(comps["walker"]) == [Decimal("0.05")]
     # a topic named by a parameter's default, which the launch file sets; one computed from a
     # parameter the launch file sets is left out (named in a warning)
     assert _ports(comps["named"]) == [("Publisher", "std_msgs/String", "/health", "10", "reliable")]
