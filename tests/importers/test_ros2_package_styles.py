@@ -251,3 +251,29 @@ def test_launch_nodes_made_several_times_and_group_settings_are_named():
     assert "launched in robot(), which the file calls 2 times" in where[4]
     assert where[6].startswith("SetRemap:")
     assert "p/f is launched in a loop" in where[7]
+
+
+def test_hostile_class_cycles_and_launch_self_references_are_read_without_a_traceback(tmp_path):
+    package = tmp_path / "h"
+    (package / "h").mkdir(parents=True)
+    (package / "launch").mkdir()
+    (package / "package.xml").write_text("<package format='3'><name>h</name></package>")
+    head = "from rclpy.node import Node\nfrom std_msgs.msg import String\n"
+    (package / "h" / "a.py").write_text(head + "from .b import B\nclass A(B):\n    pass\n")
+    (package / "h" / "b.py").write_text(head + "from .a import A\nclass B(A):\n    pass\n")
+    (package / "h" / "c.py").write_text(
+        head + "from ....far import Base\nclass C(Node, Base):\n    def __init__(self):\n"
+        "        super().__init__('c')\n        self.create_publisher(String, 'x', 1)\n"
+    )
+    (package / "launch" / "l.launch.py").write_text(
+        "from launch import LaunchDescription\nfrom launch.actions import GroupAction\n"
+        "from launch_ros.actions import Node, PushRosNamespace\n"
+        "g = GroupAction([PushRosNamespace(g), g])\n"
+        "def generate_launch_description():\n"
+        "    n = Node(package='h', executable='c')\n"
+        "    return LaunchDescription([GroupAction([PushRosNamespace(ns), n]), g])\n"
+    )
+    warnings: list = []
+    project = read_ros2_packages([package], warnings)
+    assert sorted(_components(project)) == ["c"]
+    assert any("pushed namespace" in w.message for w in warnings)
