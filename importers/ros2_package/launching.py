@@ -29,7 +29,7 @@ from pathlib import PurePosixPath
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate
-from rosaadl.importers.ros2_package.node_classes import SCRIPT, dotted, module_imports
+from rosaadl.importers.ros2_package.node_classes import SCRIPT, dotted, keyword_argument, module_imports
 
 __all__ = [
     "EntryPoint",
@@ -222,8 +222,8 @@ class _LaunchFile:
         self.scope = Scope(self.names)
         for node in ast.walk(tree):
             if isinstance(node, ast.Call) and self.called(node) == "DeclareLaunchArgument":
-                name = self.text(node.args[0] if node.args else _keyword(node, "name"), quiet=True)
-                default = _keyword(node, "default_value")
+                name = self.text(node.args[0] if node.args else keyword_argument(node, "name"), quiet=True)
+                default = keyword_argument(node, "default_value")
                 text = self.text(default, quiet=True) if default is not None else None
                 if name is not None and text is not None:
                     self.arguments[name] = text
@@ -255,7 +255,7 @@ class _LaunchFile:
         if argument is not None:
             default = self.arguments.get(argument)
             if default is None and isinstance(node, ast.Call):
-                given = self.text(_keyword(node, "default"), quiet=True)
+                given = self.text(keyword_argument(node, "default"), quiet=True)
                 default = given
             if default is None:
                 return None
@@ -306,10 +306,6 @@ class _LaunchFile:
                 )
                 found[name] = _scalar(known.value) if from_argument else known.value
         return found
-
-
-def _keyword(call: ast.Call, name: str) -> ast.expr | None:
-    return next((k.value for k in call.keywords if k.arg == name), None)
 
 
 def _scalar(text: object) -> object:
@@ -364,7 +360,7 @@ def _group_namespaces(tree: ast.Module, launch: _LaunchFile) -> dict[int, list[s
     by_name = launch.bound
 
     def pushed(call: ast.Call, item: ast.AST) -> list[str | None]:
-        actions = call.args[0] if call.args else _keyword(call, "actions")
+        actions = call.args[0] if call.args else keyword_argument(call, "actions")
         if not isinstance(actions, (ast.List, ast.Tuple)):
             return []
         found: list[str | None] = []
@@ -373,7 +369,7 @@ def _group_namespaces(tree: ast.Module, launch: _LaunchFile) -> dict[int, list[s
                 break
             element = by_name.get(element.id, element) if isinstance(element, ast.Name) else element
             if isinstance(element, ast.Call) and launch.called(element) in _PUSH_NAMESPACE:
-                given = element.args[0] if element.args else _keyword(element, "namespace")
+                given = element.args[0] if element.args else keyword_argument(element, "namespace")
                 text = launch.text(given)
                 if text is None:
                     launch.warn(f"pushed namespace {ast.unparse(element)} is not literal", element)

@@ -29,6 +29,7 @@ __all__ = [
     "read_module",
     "module_constants",
     "mark_assignments",
+    "keyword_argument",
     "dotted",
     "module_imports",
 ]
@@ -119,7 +120,8 @@ def _interface_type(qualified: str | None) -> str | None:
     return None
 
 
-def _keyword(call: ast.Call, name: str) -> ast.expr | None:
+def keyword_argument(call: ast.Call, name: str) -> ast.expr | None:
+    """The expression ``call`` gives its keyword ``name``, if any."""
     return next((k.value for k in call.keywords if k.arg == name), None)
 
 
@@ -346,7 +348,9 @@ class _Reader:
             call = _init_call(init)
             if call is None or index + 1 >= len(inits):
                 break
-            scope = scope.with_names(_bind(inits[index + 1], call, scope, self.value))
+            arguments = _init_arguments(call)
+            bound = _bind(inits[index + 1], arguments, call.keywords, scope, Scope(scope.names), self.value)
+            scope = scope.with_names(bound)
         return chain
 
     def constructor_arguments(self, cls: ast.ClassDef, init: ast.FunctionDef | None) -> dict[str, Known]:
@@ -356,12 +360,6 @@ class _Reader:
         default); with no call in the module, nothing is known (another module may make it)."""
         if init is None:
             return {}
-        params = [a.arg for a in init.args.posonlyargs + init.args.args][1:]
-        defaults = dict(zip(reversed(params), reversed(init.args.defaults), strict=False))
-        defaults.update(
-            {a.arg: d for a, d in zip(init.args.kwonlyargs, init.args.kw_defaults, strict=True) if d}
-        )
-        names = params + [a.arg for a in init.args.kwonlyargs]
         calls = [
             (function, node)
             for function in self.tree.body
@@ -373,18 +371,8 @@ class _Reader:
             return {}
         seen: list[dict[str, Known]] = []
         for function, call in calls:
-            if any(isinstance(a, ast.Starred) for a in call.args) or any(
-                k.arg is None for k in call.keywords
-            ):
-                return {}
             scope = Scope({**self.constants, **_single_assignments(function, self)})
-            given: dict[str, ast.expr] = dict(zip(params, call.args, strict=False))
-            given.update({k.arg: k.value for k in call.keywords if k.arg})
-            values = {}
-            for name in names:
-                expr = given.get(name, defaults.get(name))
-                values[name] = self.value(expr, Scope(self.constants) if name not in given else scope)
-            seen.append(values)
+            seen.append(_bind(init, call.args, call.keywords, scope, Scope(self.constants), self.value))
         first = seen[0]
         return {
             n: v if all(other.get(n) == v for other in seen) else Known(UNKNOWN) for n, v in first.items()
@@ -429,7 +417,7 @@ class _Reader:
         if node is None:
             return None
         args = _init_arguments(node)
-        given = args[0] if args else _keyword(node, "node_name")
+        given = args[0] if args else keyword_argument(node, "node_name")
         self.namespace(node, scope, fact)
         value = evaluate(given, scope)
         if isinstance(value, Known) and isinstance(value.value, str) and value.value:
@@ -632,7 +620,7 @@ class _Reader:
             ):
                 continue
             call = stmt.value
-            name = evaluate(call.args[0] if call.args else _keyword(call, "node_name"), constants)
+            name = evaluate(call.args[0] if call.args else keyword_argument(call, "node_name"), constants)
             variable = stmt.targets[0].id
             if not (isinstance(name, Known) and isinstance(name.value, str)):
                 self.warn("a node is made with a name not known from the source; not imported", stmt)
@@ -662,7 +650,7 @@ class _Reader:
 
     def namespace(self, call: ast.Call, scope: Scope, fact: NodeFact) -> None:
         """The ``namespace=`` a node is made with (``Node.__init__`` or ``create_node``)."""
-        given = _keyword(call, "namespace")
+        given = keyword_argument(call, "namespace")
         if given is None:
             return
         value = evaluate(given, scope)
@@ -761,28 +749,28 @@ def _init_arguments(call: ast.Call) -> list[ast.expr]:
 
 
 def _bind(
-    init: ast.FunctionDef, call: ast.Call, scope: Scope, value: Callable[[ast.expr | None, Scope], Known]
+    init: ast.FunctionDef,
+    args: list[ast.expr],
+    keywords: list[ast.keyword],
+    scope: Scope,
+    defaults_scope: Scope,
+    value: Callable[[ast.expr | None, Scope], Known],
 ) -> dict[str, Known]:
-    """What the parameters of ``init`` are when ``call`` calls it (a default where not given;
-    unknown past a ``*args``/``**kwargs`` argument)."""
+    """What the parameters of ``init`` (``self`` left out) are when called with ``args`` and
+    ``keywords`` read in ``scope``: a default (read in ``defaults_scope``) where not given; none
+    known after a ``*args`` or ``**kwargs`` argument."""
     params = [a.arg for a in init.args.posonlyargs + init.args.args][1:]
+    names = params + [a.arg for a in init.args.kwonlyargs]
+    if any(isinstance(a, ast.Starred) for a in args) or any(k.arg is None for k in keywords):
+        return {name: Known(UNKNOWN) for name in names}
     defaults = dict(zip(reversed(params), reversed(init.args.defaults), strict=False))
     defaults.update({a.arg: d for a, d in zip(init.args.kwonlyargs, init.args.kw_defaults, strict=True) if d})
-    args = _init_arguments(call)
-    starred = any(isinstance(a, ast.Starred) for a in args) or any(k.arg is None for k in call.keywords)
-    given: dict[str, ast.expr] = dict(
-        zip(params, [a for a in args if not isinstance(a, ast.Starred)], strict=False)
-    )
-    given.update({k.arg: k.value for k in call.keywords if k.arg})
-    bound = {}
-    for name in params + [a.arg for a in init.args.kwonlyargs]:
-        if name in given:
-            bound[name] = value(given[name], scope)
-        elif starred:
-            bound[name] = Known(UNKNOWN)
-        else:
-            bound[name] = value(defaults.get(name), Scope(scope.names))
-    return bound
+    given: dict[str, ast.expr] = dict(zip(params, args, strict=False))
+    given.update({k.arg: k.value for k in keywords if k.arg})
+    return {
+        name: value(given[name], scope) if name in given else value(defaults.get(name), defaults_scope)
+        for name in names
+    }
 
 
 def _forget_changed(target: ast.expr | None, names: dict[str, Known]) -> None:
