@@ -17,7 +17,7 @@ import operator
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-__all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "run_body", "stored_names"]
+__all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "run_body", "stored_names", "bound_once"]
 
 #: Method calls followed into the method's body at most this deep.
 MAX_CALL_DEPTH = 4
@@ -190,6 +190,25 @@ def stored_names(stmt: ast.AST) -> set[str]:
         ):
             found.add("self." + node.attr)
     return found
+
+
+def bound_once(node: ast.AST) -> dict[str, ast.expr]:
+    """The names assigned exactly once in ``node`` (``x = ...``, nowhere else stored, no
+    function parameter of that name), each with the expression it is given, in walk order."""
+    counts: dict[str, int] = {}
+    for inner in ast.walk(node):
+        if isinstance(inner, ast.Name) and isinstance(inner.ctx, ast.Store):
+            counts[inner.id] = counts.get(inner.id, 0) + 1
+        elif isinstance(inner, ast.arg):
+            counts[inner.arg] = counts.get(inner.arg, 0) + 2
+    return {
+        inner.targets[0].id: inner.value
+        for inner in ast.walk(node)
+        if isinstance(inner, ast.Assign)
+        and len(inner.targets) == 1
+        and isinstance(inner.targets[0], ast.Name)
+        and counts.get(inner.targets[0].id) == 1
+    }
 
 
 def _duration(call: ast.Call, scope: Scope) -> Known | _Unknown:

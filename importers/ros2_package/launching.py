@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import PurePosixPath
 
 from rosaadl.errors import Diagnostic, Location
-from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate
+from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, bound_once, evaluate
 from rosaadl.importers.ros2_package.node_classes import SCRIPT, dotted, keyword_argument, module_imports
 
 __all__ = [
@@ -200,25 +200,14 @@ class _LaunchFile:
         self.configurations: dict[str, str] = {}  # name bound to LaunchConfiguration('x') → x
         self.names = module_constants(tree)
         self.bound: dict[str, ast.expr] = {}  # name bound once → its expression
-        counts: dict[str, int] = {}
-        for node in ast.walk(tree):
-            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
-                counts[node.id] = counts.get(node.id, 0) + 1
-        for node in ast.walk(tree):
-            if (
-                isinstance(node, ast.Assign)
-                and len(node.targets) == 1
-                and isinstance(node.targets[0], ast.Name)
-                and counts.get(node.targets[0].id) == 1
-            ):
-                name = node.targets[0].id
-                self.bound[name] = node.value
-                argument = self.configuration(node.value)
-                if argument is not None:
-                    self.configurations[name] = argument
-                elif name not in self.names:
-                    value = evaluate(node.value, Scope(self.names))
-                    self.names[name] = value if isinstance(value, Known) else Known(UNKNOWN)
+        for name, expression in bound_once(tree).items():
+            self.bound[name] = expression
+            argument = self.configuration(expression)
+            if argument is not None:
+                self.configurations[name] = argument
+            elif name not in self.names:
+                value = evaluate(expression, Scope(self.names))
+                self.names[name] = value if isinstance(value, Known) else Known(UNKNOWN)
         self.scope = Scope(self.names)
         for node in ast.walk(tree):
             if isinstance(node, ast.Call) and self.called(node) == "DeclareLaunchArgument":

@@ -17,7 +17,14 @@ from dataclasses import dataclass, field
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers.ros2_package.building import period_seconds
-from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate, stored_names
+from rosaadl.importers.ros2_package.evaluation import (
+    UNKNOWN,
+    Known,
+    Scope,
+    bound_once,
+    evaluate,
+    stored_names,
+)
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
 from rosaadl.importers.ros2_package.qos import read_qos
 
@@ -794,22 +801,9 @@ def _single_assignments(
 ) -> dict[str, Known]:
     """The local names of ``function`` assigned once in it, to a value known from the module's
     constants and the names before (a name assigned twice, or otherwise stored, is left out)."""
-    counts: dict[str, int] = {}
-    for node in ast.walk(function):
-        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
-            counts[node.id] = counts.get(node.id, 0) + 1
-    for arg in ast.walk(function.args):
-        if isinstance(arg, ast.arg):
-            counts[arg.arg] = counts.get(arg.arg, 0) + 2
     names: dict[str, Known] = {}
-    for node in ast.walk(function):
-        if (
-            isinstance(node, ast.Assign)
-            and len(node.targets) == 1
-            and isinstance(node.targets[0], ast.Name)
-            and counts.get(node.targets[0].id) == 1
-        ):
-            names[node.targets[0].id] = reader.value(node.value, Scope({**reader.constants, **names}))
+    for name, expression in bound_once(function).items():
+        names[name] = reader.value(expression, Scope({**reader.constants, **names}))
     return names
 
 
