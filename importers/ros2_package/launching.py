@@ -101,29 +101,52 @@ def _text(node: ast.expr | None, scope: Scope) -> str | None:
     return value.value if isinstance(value, Known) and isinstance(value.value, str) else None
 
 
+_SETUP = ("setup", "setuptools.setup", "distutils.core.setup")
+
+
 def entry_points(tree: ast.Module, file: str, warnings: list[Diagnostic]) -> list[EntryPoint]:
-    """The ``console_scripts`` of the ``setup(...)`` call of a ``setup.py``."""
+    """The ``console_scripts`` of the ``setup(...)`` call of a ``setup.py`` (a dictionary or list
+    bound once to a name is followed; anything else is a warning at its line)."""
+    imports = module_imports(tree)
     scope = Scope(module_constants(tree))
+    bound = bound_once(tree)
     found: list[EntryPoint] = []
+
+    def warn(message: str, node: ast.AST) -> None:
+        line, column = getattr(node, "lineno", None), getattr(node, "col_offset", 0) + 1
+        warnings.append(Diagnostic("warning", message, Location(file, line, column)))
+
+    def followed(expr: ast.expr) -> ast.expr:
+        return bound.get(expr.id, expr) if isinstance(expr, ast.Name) else expr
+
     for node in ast.walk(tree):
-        if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "setup"):
+        if not (isinstance(node, ast.Call) and dotted(node.func, imports) in _SETUP):
             continue
         for keyword in node.keywords:
-            if keyword.arg != "entry_points" or not isinstance(keyword.value, ast.Dict):
+            if keyword.arg is None:
+                warn(
+                    f"setup(**{ast.unparse(keyword.value)}): entry points given so are not read",
+                    keyword.value,
+                )
+            if keyword.arg != "entry_points":
                 continue
-            for key, value in zip(keyword.value.keys, keyword.value.values, strict=True):
-                if _text(key, scope) != "console_scripts" or not isinstance(value, (ast.List, ast.Tuple)):
+            table = followed(keyword.value)
+            if not isinstance(table, ast.Dict):
+                warn(
+                    f"entry_points {ast.unparse(keyword.value)} is not a literal dictionary; not read", table
+                )
+                continue
+            for key, value in zip(table.keys, table.values, strict=True):
+                if key is None or _text(key, scope) != "console_scripts":
                     continue
-                for item in value.elts:
+                scripts = followed(value)
+                if not isinstance(scripts, (ast.List, ast.Tuple)):
+                    warn(f"console_scripts {ast.unparse(value)} is not a literal list; not read", scripts)
+                    continue
+                for item in scripts.elts:
                     text = _text(item, scope)
                     if text is None or "=" not in text or ":" not in text:
-                        warnings.append(
-                            Diagnostic(
-                                "warning",
-                                f"entry point {ast.unparse(item)} is not known from the source",
-                                Location(file, item.lineno, item.col_offset + 1),
-                            )
-                        )
+                        warn(f"entry point {ast.unparse(item)} is not known from the source", item)
                         continue
                     executable, _, target = text.partition("=")
                     module, _, function = target.strip().partition(":")

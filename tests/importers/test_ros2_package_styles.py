@@ -277,3 +277,24 @@ def test_hostile_class_cycles_and_launch_self_references_are_read_without_a_trac
     project = read_ros2_packages([package], warnings)
     assert sorted(_components(project)) == ["c"]
     assert any("pushed namespace" in w.message for w in warnings)
+
+
+def test_setup_py_entry_points_through_names_and_setuptools_or_named():
+    from rosaadl.importers.ros2_package.launching import entry_points
+
+    text = (
+        "import setuptools\n"
+        "SCRIPTS = ['talk = pkg.talker:main']\n"
+        "setuptools.setup(name='pkg', entry_points={'console_scripts': SCRIPTS})\n"
+        "setuptools.setup(name='other', entry_points=computed())\n"
+        "setuptools.setup(entry_points={'console_scripts': [f'{n} = p.{n}:main' for n in 'a']})\n"
+        "setuptools.setup(**options)\n"
+    )
+    warnings: list = []
+    entries = entry_points(ast.parse(text), "setup.py", warnings)
+    assert [(e.executable, e.module, e.function) for e in entries] == [("talk", "pkg.talker", "main")]
+    where = {w.location.line: w.message for w in warnings}
+    assert sorted(where) == [4, 5, 6]
+    assert "not a literal dictionary" in where[4]
+    assert "not a literal list" in where[5]
+    assert "setup(**options)" in where[6]
