@@ -26,6 +26,13 @@ def styles():
     return read_ros2_packages([STYLES], warnings), warnings
 
 
+def _read_text(read, text: str, file: str) -> tuple[object, dict[int | None, str]]:
+    """What ``read(tree, file, warnings)`` gives for the source ``text``, and its warnings by line."""
+    warnings: list = []
+    found = read(ast.parse(text), file, warnings)
+    return found, {w.location.line: w.message for w in warnings}
+
+
 def _components(project) -> dict:
     return {c.name: c for p in project.software.packages for c in p.components}
 
@@ -161,15 +168,14 @@ def test_nested_groups_push_their_namespaces_and_an_absolute_one_stays():
         "                     PushROSNamespace(unknown)]),\n"
         "    ])\n"
     )
-    warnings: list = []
-    actions = launch_actions(ast.parse(text), "x.launch.py", warnings)
+    actions, where = _read_text(launch_actions, text, "x.launch.py")
     assert sorted((a.executable, a.namespace) for a in actions) == [
         ("a", "robot/arm"),
         ("b", "/fixed"),
         ("c", "before"),
         ("d", ""),
     ]
-    assert warnings == []
+    assert where == {}
 
 
 def test_setup_cfg_and_cmake_programs_read_or_located(tmp_path):
@@ -224,11 +230,12 @@ def test_conditional_and_repeated_creations_are_named_at_their_line():
         "    def cb(self):\n"
         "        pass\n"
     )
-    warnings: list = []
-    [fan] = read_module(ast.parse(text), "fan.py", "p", warnings).nodes
+    module, where = _read_text(
+        lambda tree, file, warnings: read_module(tree, file, "p", warnings), text, "fan.py"
+    )
+    [fan] = module.nodes
     assert [(p.topic, p.location.line) for p in fan.ports] == [("debug", 7)]
     assert [t.period for t in fan.timers] == [Decimal("0.1"), Decimal("1.0")]
-    where = {w.location.line: w.message for w in warnings}
     assert sorted(where) == [7, 8, 12]
     assert "runs only when debug" in where[7]
     assert "in a loop" in where[8]
@@ -245,9 +252,8 @@ def test_launch_nodes_made_several_times_and_group_settings_are_named():
         "    return LaunchDescription([robot('a'), robot('b'), SetRemap(src='x', dst='y'),\n"
         "        *[Node(package='p', executable='f') for _ in range(2)]])\n"
     )
-    warnings: list = []
-    assert launch_actions(ast.parse(text), "x.launch.py", warnings) == []
-    where = {w.location.line: w.message for w in warnings}
+    actions, where = _read_text(launch_actions, text, "x.launch.py")
+    assert actions == []
     assert "launched in robot(), which the file calls 2 times" in where[4]
     assert where[6].startswith("SetRemap:")
     assert "p/f is launched in a loop" in where[7]
@@ -290,10 +296,8 @@ def test_setup_py_entry_points_through_names_and_setuptools_or_named():
         "setuptools.setup(entry_points={'console_scripts': [f'{n} = p.{n}:main' for n in 'a']})\n"
         "setuptools.setup(**options)\n"
     )
-    warnings: list = []
-    entries = entry_points(ast.parse(text), "setup.py", warnings)
+    entries, where = _read_text(entry_points, text, "setup.py")
     assert [(e.executable, e.module, e.function) for e in entries] == [("talk", "pkg.talker", "main")]
-    where = {w.location.line: w.message for w in warnings}
     assert sorted(where) == [4, 5, 6]
     assert "not a literal dictionary" in where[4]
     assert "not a literal list" in where[5]
