@@ -14,6 +14,7 @@ listing every problem.
 
 from __future__ import annotations
 
+import ast
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -29,8 +30,16 @@ from rosaadl.importers.ros2_package.facts import (
     NodeFact,
     SystemFacts,
 )
-from rosaadl.importers.ros2_package.launching import EntryPoint, LaunchAction, entry_points, launch_actions
-from rosaadl.importers.ros2_package.node_classes import ModuleNodes, read_module
+from rosaadl.importers.ros2_package.launching import (
+    EntryPoint,
+    LaunchAction,
+    cmake_programs,
+    entry_points,
+    launch_actions,
+    setup_cfg_entry_points,
+)
+from rosaadl.importers.ros2_package.node_classes import ModuleNodes, mark_assignments, read_module
+from rosaadl.importers.ros2_package.package_classes import abstract_classes, outside_classes, resolved_imports
 from rosaadl.importers.ros2_package.sources import (
     MAX_DEPTH,
     find_packages,
@@ -43,6 +52,7 @@ from rosaadl.importers.ros2_package.sources import (
 __all__ = ["read_ros2_packages", "read_facts", "is_ros2_package_folder"]
 
 _OTHER_LAUNCH = (".launch.xml", ".launch.yaml", ".launch.yml", ".launch")
+_CPP = (".cpp", ".cc", ".cxx", ".hpp", ".hh", ".h")
 
 
 def is_ros2_package_folder(path: Path) -> bool:
@@ -80,6 +90,8 @@ def _read_package(
     folder: Path, name: str, roots: list[Path], facts: SystemFacts, warnings: list[Diagnostic]
 ) -> _Package:
     package = _Package(name)
+    cpp = 0
+    sources: list[tuple[ast.Module, Path, Path]] = []  # the modules, read once all are parsed
     for path in package_files(folder):
         shown = str(path)
         relative = path.relative_to(folder)
@@ -100,6 +112,15 @@ def _read_package(
                 )
             )
             continue
+        if path.suffix in _CPP:
+            cpp += 1
+            continue
+        if relative.parts == ("setup.cfg",) or relative.parts == ("CMakeLists.txt",):
+            text = read_text(path, shown, roots, warnings)
+            if text is not None:
+                read = setup_cfg_entry_points if path.suffix == ".cfg" else cmake_programs
+                package.entries.extend(read(text, shown, warnings))
+            continue
         if path.suffix != ".py":
             continue
         text = read_text(path, shown, roots, warnings)
@@ -107,18 +128,31 @@ def _read_package(
         if tree is None:
             continue
         try:
-            _read_source(package, tree, path, relative, facts, warnings)
+            if not _read_source(package, tree, path, relative, warnings):
+                sources.append((tree, path, relative))
         except RecursionError:
-            warnings.append(
-                Diagnostic("warning", "the source nests too deeply to be read; not read", Location(shown))
+            _too_deep(shown, warnings)
+    _read_modules(package, sources, facts, warnings)
+    if cpp:
+        warnings.append(
+            Diagnostic(
+                "warning",
+                f"package {name!r} has {cpp} C/C++ source file(s): only Python (rclpy) nodes are read; "
+                "its C++ nodes are not imported",
+                Location(str(folder / "package.xml")),
             )
+        )
     return package
 
 
-def _read_source(
-    package: _Package, tree, path: Path, relative: Path, facts: SystemFacts, warnings: list[Diagnostic]
-) -> None:
-    """What one Python file of ``package`` says: entry points, launch actions or nodes."""
+def _too_deep(shown: str, warnings: list[Diagnostic]) -> None:
+    warnings.append(
+        Diagnostic("warning", "the source nests too deeply to be read; not read", Location(shown))
+    )
+
+
+def _read_source(package: _Package, tree, path: Path, relative: Path, warnings: list[Diagnostic]) -> bool:
+    """Read a ``setup.py`` (entry points) or a launch file of ``package``; False for a module."""
     shown = str(path)
     if relative.parts == ("setup.py",):
         package.entries.extend(entry_points(tree, shown, warnings))
@@ -126,8 +160,48 @@ def _read_source(
         name = path.name.removesuffix(".py").removesuffix(".launch")
         package.launches.append((name, launch_actions(tree, shown, warnings)))
     else:
-        found = read_module(tree, shown, package.name, warnings)
-        package.modules[_module_name(relative)] = found
+        return False
+    return True
+
+
+def _read_modules(
+    package: _Package,
+    sources: list[tuple[ast.Module, Path, Path]],
+    facts: SystemFacts,
+    warnings: list[Diagnostic],
+) -> None:
+    """The nodes of the package's modules, a class deriving from a node class of another module
+    of the package read with that class's methods (:mod:`.package_classes`)."""
+    modules: dict[str, tuple[ast.Module, dict[str, str], str]] = {}
+    for tree, path, relative in sources:
+        mark_assignments(tree)
+        name = _module_name(relative)
+        modules[name] = (
+            tree,
+            resolved_imports(tree, name, is_package=relative.name == "__init__.py"),
+            str(path),
+        )
+    try:
+        outside = outside_classes(modules)
+        abstract = abstract_classes(modules, outside)
+    except RecursionError:
+        outside, abstract = {}, set()
+    for tree, path, relative in sources:
+        name = _module_name(relative)
+        try:
+            found = read_module(
+                tree,
+                str(path),
+                package.name,
+                warnings,
+                imports=dict(modules[name][1]),
+                outside=outside,
+                bases_only={q.rpartition(".")[2] for q in abstract if q.rpartition(".")[0] == name},
+            )
+        except RecursionError:
+            _too_deep(str(path), warnings)
+            continue
+        package.modules[name] = found
         for node in found.nodes:
             facts.nodes[node.key] = node
 
@@ -141,7 +215,7 @@ def _executables(packages: dict[str, _Package]) -> dict[tuple[str, str], list[No
             if module is None:
                 continue
             made = module.functions.get(entry.function) or []
-            nodes = [module.classes[n] for n in made if n in module.classes] or (
+            nodes = [module.classes[n] for n in dict.fromkeys(made) if n in module.classes] or (
                 module.nodes if len(module.nodes) == 1 else []
             )
             for node in nodes:
@@ -182,7 +256,7 @@ def _deployments(packages: dict[str, _Package], facts: SystemFacts, warnings: li
                         LaunchedNode(
                             node.key,
                             launched_name,
-                            action.namespace or "/",
+                            action.namespace or node.namespace,
                             dict(action.remappings),
                             dict(action.parameters),
                             action.location,

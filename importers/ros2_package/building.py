@@ -136,9 +136,25 @@ class _Builder:
         parameters = dict(node.parameters)
         if launched:
             parameters.update(launched.parameters)
-        topics = []
+        topics: list[str | None] = []
         for port in node.ports:
-            full = resolve_name(port.topic, namespace, name)
+            topic: str | None = port.topic
+            why = ""
+            if port.parameter and port.parameter in parameters:
+                value = parameters[port.parameter]
+                topic = value if isinstance(value, str) and value else None
+                why = f"parameter {port.parameter!r} is set to {value!r}, not a name"
+            elif launched and port.derived in launched.parameters:
+                topic = None
+                why = f"it is computed from parameter {port.derived!r}, which the launch file sets"
+            if topic is None:
+                self.warn(
+                    f"port {port.topic!r} of node {name!r}: {why}; the port is left out",
+                    launched.location if launched else port.location,
+                )
+                topics.append(None)
+                continue
+            full = resolve_name(topic, namespace, name)
             topics.append(remaps.get(full, full))
         periods = []
         for timer in node.timers:
@@ -169,6 +185,8 @@ class _Builder:
             return self.components[key][1]
         comp = model.new("rosmod.Component", name=key)
         for port, port_name, topic in zip(node.ports, port_names(node.ports), topics, strict=True):
+            if topic is None:
+                continue
             comp.ports.append(model.new(f"rosmod.{port.kind}", name=port_name, type=port.type))
             comp.properties.append(model.new("rosmod.Property", key=f"{port_name}.Topic", value=topic))
             for qos in ("reliability", "durability", "depth"):

@@ -17,7 +17,7 @@ import operator
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-__all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "run_body", "stored_names"]
+__all__ = ["UNKNOWN", "Known", "Scope", "evaluate", "run_body", "stored_names", "bound_once"]
 
 #: Method calls followed into the method's body at most this deep.
 MAX_CALL_DEPTH = 4
@@ -55,9 +55,10 @@ class Scope:
     parameters: Mapping[str, object] = field(default_factory=dict)  #: declared name → default
     methods: Mapping[str, ast.FunctionDef] = field(default_factory=dict)  #: the class's methods
     depth: int = 0
+    node: str = "self"  #: the name the node goes by (``self``, or ``node`` in a function)
 
     def with_names(self, names: Mapping[str, Known]) -> Scope:
-        return Scope({**self.names, **names}, self.parameters, self.methods, self.depth)
+        return Scope({**self.names, **names}, self.parameters, self.methods, self.depth, self.node)
 
 
 _BINARY: dict[type, Callable[[object, object], object]] = {
@@ -95,13 +96,13 @@ def _binary(op: ast.operator, left: object, right: object) -> object:
     return UNKNOWN
 
 
-def _self_call(node: ast.expr) -> ast.Call | None:
-    """``node`` when it is ``self.<name>(...)``."""
+def _self_call(node: ast.expr, receiver: str = "self") -> ast.Call | None:
+    """``node`` when it is ``self.<name>(...)`` (``receiver`` standing for ``self``)."""
     if (
         isinstance(node, ast.Call)
         and isinstance(node.func, ast.Attribute)
         and isinstance(node.func.value, ast.Name)
-        and node.func.value.id == "self"
+        and node.func.value.id == receiver
     ):
         return node
     return None
@@ -118,7 +119,7 @@ def _parameter_read(node: ast.expr, scope: Scope) -> Known | _Unknown:
         and node.func.attr == "get_parameter_value"
     ):
         node = node.func.value
-    call = _self_call(node)
+    call = _self_call(node, scope.node)
     if call is None or not call.args:
         return UNKNOWN
     method = call.func.attr  # type: ignore[attr-defined]
@@ -151,7 +152,7 @@ def _method_result(call: ast.Call, scope: Scope) -> Known | _Unknown:
         if not isinstance(value, Known):
             return UNKNOWN
         names[param] = value
-    inner = Scope({**scope.names, **names}, scope.parameters, scope.methods, scope.depth + 1)
+    inner = Scope({**scope.names, **names}, scope.parameters, scope.methods, scope.depth + 1, scope.node)
     return run_body(method.body, inner)
 
 
@@ -189,6 +190,25 @@ def stored_names(stmt: ast.AST) -> set[str]:
         ):
             found.add("self." + node.attr)
     return found
+
+
+def bound_once(node: ast.AST) -> dict[str, ast.expr]:
+    """The names assigned exactly once in ``node`` (``x = ...``, nowhere else stored, no
+    function parameter of that name), each with the expression it is given, in walk order."""
+    counts: dict[str, int] = {}
+    for inner in ast.walk(node):
+        if isinstance(inner, ast.Name) and isinstance(inner.ctx, ast.Store):
+            counts[inner.id] = counts.get(inner.id, 0) + 1
+        elif isinstance(inner, ast.arg):
+            counts[inner.arg] = counts.get(inner.arg, 0) + 2
+    return {
+        inner.targets[0].id: inner.value
+        for inner in ast.walk(node)
+        if isinstance(inner, ast.Assign)
+        and len(inner.targets) == 1
+        and isinstance(inner.targets[0], ast.Name)
+        and counts.get(inner.targets[0].id) == 1
+    }
 
 
 def _duration(call: ast.Call, scope: Scope) -> Known | _Unknown:

@@ -37,6 +37,8 @@ class PortFact:
     location: Location = field(default_factory=Location)
     qos: dict[str, str] = field(default_factory=dict)  #: reliability, durability, depth (as text)
     name: str = ""  #: a name for the port, unique in its node (made from the topic when empty)
+    parameter: str | None = None  #: the node parameter whose value is the topic
+    derived: str | None = None  #: the node parameter the topic is computed from
 
 
 @dataclass

@@ -12,32 +12,71 @@ such call outside a node is a warning at its file and line; nothing is guessed.
 from __future__ import annotations
 
 import ast
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from rosaadl.errors import Diagnostic, Location
 from rosaadl.importers.ros2_package.building import period_seconds
-from rosaadl.importers.ros2_package.evaluation import UNKNOWN, Known, Scope, evaluate, stored_names
+from rosaadl.importers.ros2_package.evaluation import (
+    UNKNOWN,
+    Known,
+    Scope,
+    bound_once,
+    evaluate,
+    stored_names,
+)
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
+from rosaadl.importers.ros2_package.qos import read_qos
 
-__all__ = ["ModuleNodes", "read_module", "dotted", "module_imports"]
+__all__ = [
+    "SCRIPT",
+    "NODE_BASES",
+    "ModuleNodes",
+    "OutsideClass",
+    "read_module",
+    "module_constants",
+    "mark_assignments",
+    "keyword_argument",
+    "dotted",
+    "module_imports",
+]
 
 #: The node methods that create the constructs read, and the positions of their arguments.
 CREATES = {
     "create_publisher": ("Publisher", ("msg_type", "topic", "qos_profile")),
+    "create_lifecycle_publisher": ("Publisher", ("msg_type", "topic", "qos_profile")),
     "create_subscription": ("Subscriber", ("msg_type", "topic", "callback", "qos_profile")),
     "create_service": ("Server", ("srv_type", "srv_name", "callback")),
     "create_client": ("Client", ("srv_type", "srv_name")),
     "create_timer": ("Timer", ("timer_period_sec", "callback")),
 }
-_NODE_BASES = ("rclpy.node.Node",)
+#: The node classes of rclpy (``rclpy.lifecycle.Node`` is ``LifecycleNode``).
+NODE_BASES = _NODE_BASES = (
+    "rclpy.node.Node",
+    "rclpy.lifecycle.Node",
+    "rclpy.lifecycle.LifecycleNode",
+    "rclpy.lifecycle.node.LifecycleNode",
+)
 _NODE_FACTORIES = ("rclpy.create_node", "rclpy.node.Node")
-#: The QoS presets of ``rclpy.qos`` (rmw_qos_profiles.h): reliability, durability, depth.
-_PRESETS = {
-    "qos_profile_sensor_data": ("best_effort", "volatile", "5"),
-    "qos_profile_system_default": ("system_default", "system_default", ""),
-    "qos_profile_services_default": ("reliable", "volatile", "10"),
-    "qos_profile_parameters": ("reliable", "volatile", "1000"),
-}
+#: Statements of a module that define rather than run.
+_DEFINITIONS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Import, ast.ImportFrom)
+#: The name the nodes a module makes when run as a script are found under in
+#: :attr:`ModuleNodes.functions` (an executable installed as a file runs the whole module).
+SCRIPT = "<script>"
+#: rclpy's action server and client (``rclpy.action``): ROSMOD has no action ports.
+_ACTIONS = {"ActionServer": "action server", "ActionClient": "action client"}
+
+
+@dataclass
+class OutsideClass:
+    """A node class of another module of the package, as a class of this module may derive from
+    it: the class, and what names mean in its module."""
+
+    cls: ast.ClassDef
+    imports: dict[str, str]
+    constants: dict[str, Known]
+    local: dict[str, ast.ClassDef]  #: the node classes of its module, by name
+    file: str = ""  #: its module's file
 
 
 @dataclass
@@ -88,6 +127,11 @@ def _interface_type(qualified: str | None) -> str | None:
     return None
 
 
+def keyword_argument(call: ast.Call, name: str) -> ast.expr | None:
+    """The expression ``call`` gives its keyword ``name``, if any."""
+    return next((k.value for k in call.keywords if k.arg == name), None)
+
+
 def _argument(call: ast.Call, names: tuple[str, ...], wanted: str) -> ast.expr | None:
     index = names.index(wanted)
     if index < len(call.args) and not any(isinstance(a, ast.Starred) for a in call.args[: index + 1]):
@@ -99,33 +143,67 @@ def _argument(call: ast.Call, names: tuple[str, ...], wanted: str) -> ast.expr |
 
 
 class _Reader:
-    def __init__(self, tree: ast.Module, file: str, warnings: list[Diagnostic], package: str) -> None:
+    def __init__(
+        self,
+        tree: ast.Module,
+        file: str,
+        warnings: list[Diagnostic],
+        package: str,
+        imports: dict[str, str] | None = None,
+        outside: dict[str, OutsideClass] | None = None,
+        bases_only: set[str] | None = None,
+    ) -> None:
+        self.bases_only = bases_only or set()
         self.tree = tree
         self.file = file
         self.warnings = warnings
         self.package = package
-        self.imports = module_imports(tree)
+        self.imports = module_imports(tree) if imports is None else imports
+        self.outside = outside or {}
+        self.files = {
+            id(n): item.file
+            for item in self.outside.values()
+            for n in ast.walk(item.cls)
+            if item.file != file
+        }
         self.constants = self._module_constants()
         self.consumed: set[int] = set()  # ids of the create_* calls read into a node
         self.result = ModuleNodes()
 
     def at(self, node: ast.AST) -> Location:
+        """Where ``node`` is: in this module, or in the module of a base class it reads."""
         return Location(
-            file=self.file, line=getattr(node, "lineno", None), column=getattr(node, "col_offset", 0) + 1
+            file=self.files.get(id(node), self.file),
+            line=getattr(node, "lineno", None),
+            column=getattr(node, "col_offset", 0) + 1,
         )
 
     def warn(self, message: str, node: ast.AST) -> None:
         self.warnings.append(Diagnostic("warning", message, self.at(node)))
+
+    def value(self, expr: ast.expr | None, scope: Scope) -> Known:
+        """What ``expr`` is known to be (a value, or a QoS profile); ``Known(UNKNOWN)`` if not."""
+        value = evaluate(expr, scope)
+        if isinstance(value, Known):
+            return value
+        qos = read_qos(expr, scope, self.dotted)
+        return Known(qos) if qos is not None else Known(UNKNOWN)
+
+    def dotted(self, expr: ast.expr) -> str | None:
+        return dotted(expr, self.imports)
 
     def _module_constants(self) -> dict[str, Known]:
         names: dict[str, Known] = {}
         for stmt in self.tree.body:
             if isinstance(stmt, (ast.Assign, ast.AnnAssign)):
                 targets = stmt.targets if isinstance(stmt, ast.Assign) else [stmt.target]
-                value = evaluate(stmt.value, Scope(names))
+                value = self.value(stmt.value, Scope(names))
                 for target in targets:
                     if isinstance(target, ast.Name):
-                        names[target.id] = value if isinstance(value, Known) else Known(UNKNOWN)
+                        names[target.id] = value
+            else:
+                for name in stored_names(stmt):  # a name set again in a branch or loop is not known
+                    names[name] = Known(UNKNOWN)
         return names
 
     # ------------------------------------------------------------------ classes
@@ -141,34 +219,94 @@ class _Reader:
                     continue
                 for base in cls.bases:
                     name = dotted(base, self.imports)
-                    if name in _NODE_BASES or name in found:
+                    if name in _NODE_BASES or name in found or name in self.outside:
                         found[cls.name] = cls
                         changed = True
                         break
         return [c for c in classes if c.name in found]
 
+    def lineage(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> list[OutsideClass]:
+        """``cls`` and its node base classes, bases first: those of this module and those of
+        other modules of the package (:class:`OutsideClass`), each with its module's names."""
+        here = OutsideClass(cls, self.imports, self.constants, by_name)
+        found: list[OutsideClass] = []
+        seen: set[int] = set()
+
+        def visit(item: OutsideClass, depth: int) -> None:
+            if id(item.cls) in seen or depth > 32:
+                return
+            seen.add(id(item.cls))
+            for base in item.cls.bases:
+                name = dotted(base, item.imports)
+                if (
+                    isinstance(base, ast.Name)
+                    and base.id in item.local
+                    and item.local[base.id] is not item.cls
+                ):
+                    visit(
+                        OutsideClass(item.local[base.id], item.imports, item.constants, item.local), depth + 1
+                    )
+                elif name in self.outside:
+                    visit(self.outside[name], depth + 1)
+            found.append(item)
+
+        visit(here, 0)
+        return found
+
     def methods(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> dict[str, ast.FunctionDef]:
-        """The methods of ``cls``, with those of its node base classes of the module."""
+        """The methods of ``cls``, with those of its node base classes (see :meth:`lineage`)."""
         methods: dict[str, ast.FunctionDef] = {}
-        for base in cls.bases:
-            if isinstance(base, ast.Name) and base.id in by_name and by_name[base.id] is not cls:
-                methods.update(self.methods(by_name[base.id], by_name))
-        for stmt in cls.body:
-            if isinstance(stmt, ast.FunctionDef):
-                methods[stmt.name] = stmt
+        for item in self.lineage(cls, by_name):
+            for stmt in item.cls.body:
+                if isinstance(stmt, ast.FunctionDef):
+                    methods[stmt.name] = stmt
         return methods
 
-    def read_class(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> NodeFact:
+    def class_attributes(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> dict[str, Known]:
+        """The class attributes of ``cls`` (and of its node base classes), as the methods read
+        them: ``self.rate`` → ``Known(30)``. Inside methods a class attribute is reached through
+        ``self`` only, never by its bare name."""
+        body: dict[str, Known] = {}
+        for item in self.lineage(cls, by_name):
+            for stmt in item.cls.body:
+                if (
+                    isinstance(stmt, ast.Assign)
+                    and len(stmt.targets) == 1
+                    and isinstance(stmt.targets[0], ast.Name)
+                ):
+                    body[stmt.targets[0].id] = self.value(stmt.value, Scope({**item.constants, **body}))
+                elif (
+                    isinstance(stmt, ast.AnnAssign)
+                    and isinstance(stmt.target, ast.Name)
+                    and stmt.value is not None
+                ):
+                    body[stmt.target.id] = self.value(stmt.value, Scope({**item.constants, **body}))
+                elif not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    for name in stored_names(stmt):
+                        body[name] = Known(UNKNOWN)
+        return {"self." + k: v for k, v in body.items()}
+
+    def borrowed_names(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> None:
+        """Give this module the imports and constants the other modules of ``cls``'s base classes
+        use (their methods are read here); a name they bind differently is known by neither."""
+        for item in self.lineage(cls, by_name):
+            if item.imports is self.imports:
+                continue
+            for table, other in ((self.imports, item.imports), (self.constants, item.constants)):
+                for name, value in other.items():
+                    if name not in table:
+                        table[name] = value  # type: ignore[assignment]
+                    elif table[name] != value:
+                        table.pop(name)
+                        table[name] = Known(UNKNOWN) if table is self.constants else "<conflict>"  # type: ignore[assignment]
+
+    def read_class(
+        self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef], bound: dict[str, Known]
+    ) -> NodeFact:
+        """The node of class ``cls``; ``bound``: what its ``__init__`` arguments are known to be
+        where the module makes the node (see :meth:`constructor_arguments`)."""
         methods = self.methods(cls, by_name)
-        names = dict(self.constants)
-        for stmt in cls.body:
-            if (
-                isinstance(stmt, ast.Assign)
-                and len(stmt.targets) == 1
-                and isinstance(stmt.targets[0], ast.Name)
-            ):
-                value = evaluate(stmt.value, Scope(names))
-                names[stmt.targets[0].id] = value if isinstance(value, Known) else Known(UNKNOWN)
+        names = {**self.constants, **self.class_attributes(cls, by_name)}
         fact = NodeFact(
             key=f"{self.package}:{self.file}:{cls.name}",
             node_name=cls.name,
@@ -179,7 +317,8 @@ class _Reader:
         fact.parameters = parameters
         scope = Scope(names, parameters, methods)
         init = methods.get("__init__")
-        node_name = self.node_name(init, scope) if init is not None else None
+        chain = self.init_chain(cls, by_name, scope.with_names(bound))
+        node_name = self.node_name(*chain[-1], fact) if chain else None
         if node_name is None:
             self.warn(
                 f"class {cls.name}: the node name is not a literal given to Node.__init__; "
@@ -188,11 +327,63 @@ class _Reader:
             )
         else:
             fact.node_name = node_name
-        ordered = ([init] if init is not None else []) + [m for m in methods.values() if m is not init]
         attributes: dict[str, Known] = {}
-        for method in ordered:
-            self.block(method.body, scope.with_names(attributes), fact, ("self",), attributes, in_loop=False)
+        for method, start in chain:  # the __init__ of the class, then those it calls up its bases
+            self.block(method.body, start.with_names(attributes), fact, ("self",), attributes, in_loop=False)
+        for method in methods.values():
+            if method is not init:
+                self.block(
+                    method.body, scope.with_names(attributes), fact, ("self",), attributes, in_loop=False
+                )
         return fact
+
+    def init_chain(
+        self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef], scope: Scope
+    ) -> list[tuple[ast.FunctionDef, Scope]]:
+        """The ``__init__`` methods a node of ``cls`` runs, each with what its parameters are
+        known to be: the nearest one, then the base class's one its ``super().__init__(...)``
+        (or ``Base.__init__(self, ...)``) calls, and so on up to rclpy's ``Node``."""
+        inits = [
+            stmt
+            for item in reversed(self.lineage(cls, by_name))
+            for stmt in item.cls.body
+            if isinstance(stmt, ast.FunctionDef) and stmt.name == "__init__"
+        ]
+        chain: list[tuple[ast.FunctionDef, Scope]] = []
+        for index, init in enumerate(inits):
+            chain.append((init, scope))
+            call = _init_call(init)
+            if call is None or index + 1 >= len(inits):
+                break
+            arguments = _init_arguments(call)
+            bound = _bind(inits[index + 1], arguments, call.keywords, scope, Scope(scope.names), self.value)
+            scope = scope.with_names(bound)
+        return chain
+
+    def constructor_arguments(self, cls: ast.ClassDef, init: ast.FunctionDef | None) -> dict[str, Known]:
+        """The values of ``cls.__init__``'s parameters where this module makes the node
+        (``LifecycleTalker('lc_talker')`` in ``main``): a parameter is known when every call of
+        the class in the module gives it the same known value (an argument, or the parameter's
+        default); with no call in the module, nothing is known (another module may make it)."""
+        if init is None:
+            return {}
+        calls = [
+            (function, node)
+            for function in self.tree.body
+            if isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef))
+            for node in ast.walk(function)
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == cls.name
+        ]
+        if not calls:
+            return {}
+        seen: list[dict[str, Known]] = []
+        for function, call in calls:
+            scope = Scope({**self.constants, **_single_assignments(function, self)})
+            seen.append(_bind(init, call.args, call.keywords, scope, Scope(self.constants), self.value))
+        first = seen[0]
+        return {
+            n: v if all(other.get(n) == v for other in seen) else Known(UNKNOWN) for n, v in first.items()
+        }
 
     def parameters(self, functions: list[ast.FunctionDef], names: dict[str, Known]) -> dict[str, object]:
         """Every ``declare_parameter(name, default)`` (and ``declare_parameters``) whose name and
@@ -227,25 +418,17 @@ class _Reader:
                 if isinstance(name, Known) and isinstance(name.value, str) and isinstance(default, Known):
                     found[f"{prefix}.{name.value}" if prefix else name.value] = default.value
 
-    def node_name(self, init: ast.FunctionDef, scope: Scope) -> str | None:
-        for node in ast.walk(init):
-            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
-                continue
-            if node.func.attr != "__init__":
-                continue
-            receiver = node.func.value
-            args = list(node.args)
-            if not (
-                isinstance(receiver, ast.Call)
-                and isinstance(receiver.func, ast.Name)
-                and receiver.func.id == "super"
-            ):
-                args = args[1:]  # Node.__init__(self, name)
-            given = args[0] if args else next((k.value for k in node.keywords if k.arg == "node_name"), None)
-            value = evaluate(given, scope)
-            if isinstance(value, Known) and isinstance(value.value, str) and value.value:
-                return value.value
+    def node_name(self, init: ast.FunctionDef, scope: Scope, fact: NodeFact) -> str | None:
+        """The name ``init`` gives ``Node.__init__`` (its ``namespace=`` goes to ``fact``)."""
+        node = _init_call(init)
+        if node is None:
             return None
+        args = _init_arguments(node)
+        given = args[0] if args else keyword_argument(node, "node_name")
+        self.namespace(node, scope, fact)
+        value = evaluate(given, scope)
+        if isinstance(value, Known) and isinstance(value.value, str) and value.value:
+            return value.value
         return None
 
     # ------------------------------------------------------------------ statements
@@ -259,31 +442,42 @@ class _Reader:
         attributes: dict[str, Known],
         *,
         in_loop: bool,
+        under: str | None = None,
     ) -> None:
-        """Read the create_* calls of ``body`` in order, knowing the names assigned before each."""
+        """Read the create_* calls of ``body`` in order, knowing the names assigned before each;
+        ``under``: the condition the body runs under, if any."""
         names = dict(scope.names)
         for stmt in body:
             current = scope.with_names(names)
             if isinstance(stmt, (ast.For, ast.AsyncFor, ast.While)):
-                self.block(stmt.body, current, fact, receivers, attributes, in_loop=True)
-                self.block(stmt.orelse, current, fact, receivers, attributes, in_loop=in_loop)
+                self.block(stmt.body, current, fact, receivers, attributes, in_loop=True, under=under)
+                self.block(stmt.orelse, current, fact, receivers, attributes, in_loop=in_loop, under=under)
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.If, ast.With, ast.AsyncWith, ast.Try)):
-                for part in _blocks(stmt):
-                    self.block(part, current, fact, receivers, attributes, in_loop=in_loop)
+                for part, condition in _blocks(stmt):
+                    inner = (
+                        under
+                        if condition is None
+                        else condition
+                        if under is None
+                        else f"{under} and {condition}"
+                    )
+                    self.block(part, current, fact, receivers, attributes, in_loop=in_loop, under=inner)
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
                 continue
+            looped = _comprehended(stmt)
             for call in _calls(stmt):
-                self.create(call, current, fact, receivers, in_loop=in_loop)
+                self.create(
+                    call, current, fact, receivers, in_loop=in_loop or id(call) in looped, under=under
+                )
             if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1:
                 target = stmt.targets[0]
-                value = evaluate(stmt.value, current)
-                known = value if isinstance(value, Known) else Known(UNKNOWN)
+                known = self.value(stmt.value, current)
                 if isinstance(target, ast.Name):
                     names[target.id] = known
                 elif (
@@ -293,12 +487,23 @@ class _Reader:
                 ):
                     names["self." + target.attr] = known
                     attributes["self." + target.attr] = known
+                else:
+                    _forget_changed(target, names)
             else:
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
+                for target in getattr(stmt, "targets", None) or [getattr(stmt, "target", None)]:
+                    _forget_changed(target, names)
 
     def create(
-        self, call: ast.Call, scope: Scope, fact: NodeFact, receivers: tuple[str, ...], *, in_loop: bool
+        self,
+        call: ast.Call,
+        scope: Scope,
+        fact: NodeFact,
+        receivers: tuple[str, ...],
+        *,
+        in_loop: bool,
+        under: str | None = None,
     ) -> None:
         func = call.func
         if not (isinstance(func, ast.Attribute) and func.attr in CREATES):
@@ -310,6 +515,8 @@ class _Reader:
         if in_loop:
             self.warn(f"{func.attr} in a loop: how many it makes is not known; not imported", call)
             return
+        if under is not None:
+            self.warn(f"{func.attr} runs only when {under}: imported as if it always did", call)
         if kind == "Timer":
             self.timer(call, scope, fact, names)
             return
@@ -332,7 +539,7 @@ class _Reader:
         qos = {}
         if "qos_profile" in names:
             qos = self.qos(_argument(call, names, "qos_profile"), scope, call)
-        port = PortFact(kind, type_name, topic.value, self.at(call), qos)
+        port = PortFact(kind, type_name, topic.value, self.at(call), qos, "", topic.parameter, topic.derived)
         port.name = _assigned_attribute(call, self.tree) or ""
         fact.ports.append(port)
 
@@ -368,63 +575,112 @@ class _Reader:
     def qos(self, expr: ast.expr | None, scope: Scope, call: ast.Call) -> dict[str, str]:
         if expr is None:
             return {}
-        value = evaluate(expr, scope)
-        if isinstance(value, Known) and isinstance(value.value, int) and not isinstance(value.value, bool):
-            return {"depth": str(value.value), "reliability": "reliable", "durability": "volatile"}
-        name = dotted(expr, self.imports)
-        preset = _PRESETS.get((name or "").rpartition(".")[2])
-        if preset:
-            return {k: v for k, v in zip(("reliability", "durability", "depth"), preset, strict=True) if v}
-        if isinstance(expr, ast.Call) and (dotted(expr.func, self.imports) or "").endswith("QoSProfile"):
-            found = {}
-            for keyword in expr.keywords:
-                if keyword.arg in ("reliability", "durability") and isinstance(keyword.value, ast.Attribute):
-                    found[keyword.arg] = keyword.value.attr.lower()
-                elif keyword.arg == "depth":
-                    depth = evaluate(keyword.value, scope)
-                    if isinstance(depth, Known) and isinstance(depth.value, int):
-                        found["depth"] = str(depth.value)
-            return found
-        self.warn(f"{call.func.attr}: the QoS {ast.unparse(expr)} is not known from the source", call)  # type: ignore[attr-defined]
-        return {}
+        found = read_qos(expr, scope, self.dotted)
+        if found is None:
+            self.warn(f"{call.func.attr}: the QoS {ast.unparse(expr)} is not known from the source", call)  # type: ignore[attr-defined]
+            return {}
+        return found.as_dict()
+
+    def action(self, call: ast.Call) -> bool:
+        """Name an ``rclpy.action`` server or client in a warning (ROSMOD has no actions: an
+        action is a goal, a cancel and a result service with a feedback and a status topic)."""
+        name = self.dotted(call.func) or ""
+        kind = _ACTIONS.get(name.rpartition(".")[2])
+        if kind is None or not (name.startswith("rclpy.action") or "." not in name):
+            return False
+        names = ("node", "action_type", "action_name")
+        type_expr = _argument(call, names, "action_type")
+        action_name = evaluate(_argument(call, names, "action_name"), Scope(self.constants))
+        type_name = dotted(type_expr, self.imports) if type_expr is not None else None
+        parts = (type_name or "").split(".")
+        shown_type = (
+            f"{parts[0]}/{parts[2]}" if len(parts) == 3 and parts[1] == "action" else "of unknown type"
+        )
+        shown_name = (
+            repr(action_name.value)
+            if isinstance(action_name, Known) and isinstance(action_name.value, str)
+            else "(name not known from the source)"
+        )
+        self.warn(
+            f"{kind} {shown_name} {shown_type}: ROSMOD has no actions (its goal, cancel and result "
+            "services and its feedback and status topics); not imported",
+            call,
+        )
+        return True
 
     # ------------------------------------------------------------------ functions
 
-    def read_function(self, function: ast.FunctionDef) -> NodeFact | None:
-        """A node made in a function: ``node = rclpy.create_node('name')`` then ``node.create_*``."""
-        receivers = []
-        fact = None
+    def read_function(self, function: ast.FunctionDef) -> list[tuple[str, NodeFact]]:
+        """The nodes made in a function: ``node = rclpy.create_node('name')`` (or ``Node('name')``)
+        then ``node.create_*``; each variable so bound is a node of its own (``talker`` and
+        ``listener`` in one ``main``). Returns (key in the module, node) pairs, the first node
+        keyed by the function's name."""
+        made: dict[str, NodeFact] = {}
+        constants = Scope({**self.constants, **_single_assignments(function, self)})
         for stmt in ast.walk(function):
-            if (
+            if not (
                 isinstance(stmt, ast.Assign)
                 and len(stmt.targets) == 1
                 and isinstance(stmt.targets[0], ast.Name)
                 and isinstance(stmt.value, ast.Call)
                 and dotted(stmt.value.func, self.imports) in _NODE_FACTORIES
             ):
-                name = evaluate(stmt.value.args[0] if stmt.value.args else None, Scope(self.constants))
-                if not (isinstance(name, Known) and isinstance(name.value, str)):
-                    self.warn("a node is made with a name not known from the source; not imported", stmt)
-                    continue
-                receivers.append(stmt.targets[0].id)
-                fact = fact or NodeFact(
-                    key=f"{self.package}:{self.file}:{function.name}",
-                    node_name=name.value,
-                    location=self.at(stmt),
-                    package=self.package,
+                continue
+            call = stmt.value
+            name = evaluate(call.args[0] if call.args else keyword_argument(call, "node_name"), constants)
+            variable = stmt.targets[0].id
+            if not (isinstance(name, Known) and isinstance(name.value, str)):
+                self.warn("a node is made with a name not known from the source; not imported", stmt)
+                continue
+            if variable in made:
+                self.warn(
+                    f"{variable} is given a second node: what each creates is not known; the first is kept",
+                    stmt,
                 )
-        if fact is None:
-            return None
-        fact.parameters = self.parameters([function], dict(self.constants))
-        scope = Scope(dict(self.constants), fact.parameters, {})
-        self.block(function.body, scope, fact, tuple(receivers), {}, in_loop=False)
-        return fact
+                continue
+            key = function.name if not made else f"{function.name}:{variable}"
+            made[variable] = NodeFact(
+                key=f"{self.package}:{self.file}:{key}",
+                node_name=name.value,
+                location=self.at(stmt),
+                package=self.package,
+            )
+            self.namespace(call, constants, made[variable])
+        found = []
+        parameters = self.parameters([function], dict(self.constants))
+        for index, (variable, fact) in enumerate(made.items()):
+            fact.parameters = parameters
+            scope = Scope(dict(self.constants), fact.parameters, {}, node=variable)
+            self.block(function.body, scope, fact, (variable,), {}, in_loop=False)
+            found.append((function.name if index == 0 else f"{function.name}:{variable}", fact))
+        return found
+
+    def namespace(self, call: ast.Call, scope: Scope, fact: NodeFact) -> None:
+        """The ``namespace=`` a node is made with (``Node.__init__`` or ``create_node``)."""
+        given = keyword_argument(call, "namespace")
+        if given is None:
+            return
+        value = evaluate(given, scope)
+        if isinstance(value, Known) and isinstance(value.value, str):
+            fact.namespace = "/" + value.value.strip("/")
+        else:
+            self.warn(
+                f"the node's namespace {ast.unparse(given)} is not known from the source; "
+                "the root namespace is kept",
+                call,
+            )
 
     def read(self) -> ModuleNodes:
         classes = self.node_classes()
         by_name = {c.name: c for c in classes}
         for cls in classes:
-            fact = self.read_class(cls, by_name)
+            self.borrowed_names(cls, by_name)
+        for cls in classes:
+            if cls.name in self.bases_only:  # read with each class deriving from it
+                self.consumed.update(id(n) for n in ast.walk(cls) if isinstance(n, ast.Call))
+                continue
+            bound = self.constructor_arguments(cls, self.methods(cls, by_name).get("__init__"))
+            fact = self.read_class(cls, by_name, bound)
             self.result.nodes.append(fact)
             self.result.classes[cls.name] = fact
         for stmt in self.tree.body:
@@ -435,12 +691,35 @@ class _Reader:
                     if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in by_name
                 ]
                 self.result.functions[stmt.name] = made
-                fact = self.read_function(stmt)
-                if fact is not None:
+                for key, fact in self.read_function(stmt):
                     self.result.nodes.append(fact)
-                    self.result.functions[stmt.name] = [*made, stmt.name]
-                    self.result.classes[stmt.name] = fact
+                    self.result.functions[stmt.name] = [*self.result.functions[stmt.name], key]
+                    self.result.classes[key] = fact
+        script = [s for s in self.tree.body if not isinstance(s, _DEFINITIONS)]
+        if script:  # the module's own statements, run as a script (``if __name__ == '__main__':``)
+            module = ast.FunctionDef(
+                name=SCRIPT,
+                args=ast.arguments([], [], None, [], [], None, []),
+                body=script,
+                decorator_list=[],
+            )
+            called = {
+                n.func.id
+                for s in script
+                for n in ast.walk(s)
+                if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+            }
+            made = [n for n in called if n in by_name]
+            for function in sorted(called & set(self.result.functions)):
+                made.extend(self.result.functions[function])
+            self.result.functions[SCRIPT] = made
+            for key, fact in self.read_function(module):
+                self.result.nodes.append(fact)
+                self.result.functions[SCRIPT] = [*self.result.functions[SCRIPT], key]
+                self.result.classes[key] = fact
         for node in ast.walk(self.tree):
+            if isinstance(node, ast.Call) and self.action(node):
+                continue
             if (
                 isinstance(node, ast.Call)
                 and isinstance(node.func, ast.Attribute)
@@ -453,6 +732,79 @@ class _Reader:
                     node,
                 )
         return self.result
+
+
+def _init_call(init: ast.FunctionDef) -> ast.Call | None:
+    """The first ``super().__init__(...)`` / ``Base.__init__(self, ...)`` call of ``init``."""
+    for node in ast.walk(init):
+        if (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Attribute)
+            and node.func.attr == "__init__"
+        ):
+            return node
+    return None
+
+
+def _init_arguments(call: ast.Call) -> list[ast.expr]:
+    """The positional arguments of an ``__init__`` call, ``self`` left out of ``Base.__init__(self, ...)``."""
+    receiver = call.func.value  # type: ignore[attr-defined]
+    by_super = (
+        isinstance(receiver, ast.Call) and isinstance(receiver.func, ast.Name) and receiver.func.id == "super"
+    )
+    return list(call.args) if by_super else list(call.args[1:])
+
+
+def _bind(
+    init: ast.FunctionDef,
+    args: list[ast.expr],
+    keywords: list[ast.keyword],
+    scope: Scope,
+    defaults_scope: Scope,
+    value: Callable[[ast.expr | None, Scope], Known],
+) -> dict[str, Known]:
+    """What the parameters of ``init`` (``self`` left out) are when called with ``args`` and
+    ``keywords`` read in ``scope``: a default (read in ``defaults_scope``) where not given; none
+    known after a ``*args`` or ``**kwargs`` argument."""
+    params = [a.arg for a in init.args.posonlyargs + init.args.args][1:]
+    names = params + [a.arg for a in init.args.kwonlyargs]
+    if any(isinstance(a, ast.Starred) for a in args) or any(k.arg is None for k in keywords):
+        return {name: Known(UNKNOWN) for name in names}
+    defaults = dict(zip(reversed(params), reversed(init.args.defaults), strict=False))
+    defaults.update({a.arg: d for a, d in zip(init.args.kwonlyargs, init.args.kw_defaults, strict=True) if d})
+    given: dict[str, ast.expr] = dict(zip(params, args, strict=False))
+    given.update({k.arg: k.value for k in keywords if k.arg})
+    return {
+        name: value(given[name], scope) if name in given else value(defaults.get(name), defaults_scope)
+        for name in names
+    }
+
+
+def _forget_changed(target: ast.expr | None, names: dict[str, Known]) -> None:
+    """``qos.depth = 1`` or ``self.qos.depth = 1`` changes what ``qos`` (``self.qos``) holds: no
+    longer known."""
+    while isinstance(target, (ast.Attribute, ast.Subscript)):
+        inner = target.value
+        if isinstance(inner, ast.Name):
+            names[inner.id] = Known(UNKNOWN)
+        elif (
+            isinstance(inner, ast.Attribute)
+            and isinstance(inner.value, ast.Name)
+            and inner.value.id == "self"
+        ):
+            names["self." + inner.attr] = Known(UNKNOWN)
+        target = inner
+
+
+def _single_assignments(
+    function: ast.FunctionDef | ast.AsyncFunctionDef, reader: _Reader
+) -> dict[str, Known]:
+    """The local names of ``function`` assigned once in it, to a value known from the module's
+    constants and the names before (a name assigned twice, or otherwise stored, is left out)."""
+    names: dict[str, Known] = {}
+    for name, expression in bound_once(function).items():
+        names[name] = reader.value(expression, Scope({**reader.constants, **names}))
+    return names
 
 
 def _assigned_attribute(call: ast.Call, tree: ast.Module, *, raw: bool = False) -> str | None:
@@ -505,20 +857,61 @@ def _calls(stmt: ast.stmt) -> list[ast.Call]:
     return found
 
 
-def _blocks(stmt: ast.stmt) -> list[list[ast.stmt]]:
-    parts = [getattr(stmt, name, None) or [] for name in ("body", "orelse", "finalbody")]
+def _blocks(stmt: ast.stmt) -> list[tuple[list[ast.stmt], str | None]]:
+    """The blocks of a compound statement, each with the condition it runs under (None: as
+    often as the statement itself). ``if __name__ == '__main__':`` is no condition: the module
+    runs as a script."""
+    if isinstance(stmt, ast.If):
+        test = ast.unparse(stmt.test)
+        if test in ("__name__ == '__main__'", '__name__ == "__main__"'):
+            return [(stmt.body, None), (stmt.orelse, "not " + test)]
+        return [(stmt.body, test), (stmt.orelse, f"not ({test})")]
+    parts = [(getattr(stmt, name, None) or [], None) for name in ("body", "finalbody")]
+    if isinstance(stmt, ast.Try):
+        parts.append((stmt.orelse, "no exception is raised"))
     for handler in getattr(stmt, "handlers", None) or []:
-        parts.append(handler.body)
+        parts.append(
+            (handler.body, f"{ast.unparse(handler.type) if handler.type else 'an exception'} is raised")
+        )
     return parts
 
 
-def _mark_parents(tree: ast.Module) -> None:
+def _comprehended(stmt: ast.stmt) -> set[int]:
+    """The ids of the calls in ``stmt`` made inside a comprehension (once per item)."""
+    found: set[int] = set()
+    for node in ast.walk(stmt):
+        if isinstance(node, (ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp)):
+            found.update(id(n) for n in ast.walk(node) if isinstance(n, ast.Call))
+    return found
+
+
+def mark_assignments(tree: ast.Module) -> None:
+    """Mark each call assigned to a name in ``tree`` with its assignment (a port's or timer's
+    name in the code); done for every module of a package before any is read, since a class
+    reads the methods of its base classes in other modules."""
     for node in ast.walk(tree):
         if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call):
             node.value._rosaadl_parent = node  # type: ignore[attr-defined]
 
 
-def read_module(tree: ast.Module, file: str, package: str, warnings: list[Diagnostic]) -> ModuleNodes:
-    """The nodes ``tree`` (the module ``file`` of ROS package ``package``) defines."""
-    _mark_parents(tree)
-    return _Reader(tree, file, warnings, package).read()
+def read_module(
+    tree: ast.Module,
+    file: str,
+    package: str,
+    warnings: list[Diagnostic],
+    *,
+    imports: dict[str, str] | None = None,
+    outside: dict[str, OutsideClass] | None = None,
+    bases_only: set[str] | None = None,
+) -> ModuleNodes:
+    """The nodes ``tree`` (the module ``file`` of ROS package ``package``) defines; ``imports``:
+    what its names stand for (relative imports resolved), ``outside``: the node classes of the
+    package's other modules by qualified name (``pkg.base.BaseNode``); ``bases_only``: the
+    classes of the module that are bases of other node classes only (not nodes themselves)."""
+    mark_assignments(tree)
+    return _Reader(tree, file, warnings, package, imports, outside, bases_only).read()
+
+
+def module_constants(tree: ast.Module, imports: dict[str, str]) -> dict[str, Known]:
+    """The top-level names of a module bound to a known value (or QoS profile)."""
+    return _Reader(tree, "", [], "", imports).constants

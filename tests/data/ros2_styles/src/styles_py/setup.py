@@ -1,0 +1,3 @@
+from setuptools import setup
+
+setup(name="styles_py", packages=["styles_py"])
