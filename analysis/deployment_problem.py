@@ -43,10 +43,24 @@ from typing import Any
 from rosaadl.analysis.busload import data_size_kbyte, message_rate
 from rosaadl.analysis.demand import ResourceDemand
 from rosaadl.analysis.deployment_links import ChainCost, Pin, chain_costs, device_pins
-from rosaadl.analysis.instance_values import PropertyReader, category_of, instance_root, system_modes
+from rosaadl.analysis.instance_values import (
+    ProcessorBindings,
+    PropertyReader,
+    category_of,
+    instance_root,
+    system_modes,
+)
 from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
-from rosaadl.errors import Diagnostic, Location, ModelError
-from rosaadl.model import component_instances, find_instance, instance_path, walk
+from rosaadl.errors import Diagnostic, Location, ModelError, RosaadlError
+from rosaadl.model import (
+    component_instances,
+    find_classifier,
+    find_instance,
+    instance_path,
+    qualified_name,
+    root_of,
+    walk,
+)
 
 __all__ = [
     "CandidateCore",
@@ -134,6 +148,9 @@ class DeploymentProblem:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     chains: list[ChainCost] = field(default_factory=list)
     pins: list[Pin] = field(default_factory=list)
+    #: (unit, core) -> the virtual processor on that core the unit is bound to (its
+    #: ``Allowed_Processor_Binding`` names it); by default a unit is bound to the core itself
+    targets: dict[tuple[int, int], str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.times is None:
@@ -157,6 +174,11 @@ class DeploymentProblem:
     def candidates(self, unit: int) -> list[int]:
         """The cores ``unit`` may go to: allowed, and with a load there."""
         return [c for c in self.allowed[unit] if self.load[unit][c] is not None]
+
+    def target(self, unit: int, core: int) -> str:
+        """The path ``Actual_Processor_Binding`` names when ``unit`` runs on ``core``: the core, or
+        the virtual processor on it that the unit's ``Allowed_Processor_Binding`` names."""
+        return self.targets.get((unit, core), self.cores[core].path)
 
     def boards(self) -> list[str]:
         """The boards, in core order."""
@@ -389,16 +411,92 @@ def _resolve(root: Any, items: Iterable[Any], what: str) -> list[Any]:
     return out
 
 
-def _covered(targets: Iterable[Any], index: dict[str, int]) -> set[int]:
-    """The candidate cores a list of binding targets stands for (a core, or the cores inside)."""
-    out: set[int] = set()
+def _covered(
+    targets: Iterable[Any], index: dict[str, int], bindings: ProcessorBindings, mode: Any
+) -> dict[int, str | None]:
+    """The candidate cores a list of binding targets stands for: a core, the cores inside a
+    processor or system, or the core a virtual processor runs on (``Actual_Processor_Binding``,
+    else the processor containing it, as OSATE's InstanceModelUtil follows it). Core index ->
+    the virtual processor to name in the binding (None: the core itself; a core named itself
+    wins over a virtual processor on it)."""
+    out: dict[int, str | None] = {}
+
+    def inside(path: str) -> list[int]:
+        if path in index:
+            return [index[path]]
+        return [i for p, i in index.items() if p.startswith(path + ".")]
+
     for target in targets:
         path = instance_path(target)
-        if path in index:
-            out.add(index[path])
+        if category_of(target) == "virtualProcessor":
+            host = bindings.physical_processor(target, mode)
+            for k in inside(instance_path(host)) if host is not None else []:
+                out.setdefault(k, path)
         else:
-            out.update(i for p, i in index.items() if p.startswith(path + "."))
+            for k in inside(path):
+                out[k] = None
     return out
+
+
+def _lineage(holder: Any, name: str) -> set[str]:
+    """The classifier ``name`` and every classifier it is or extends, lower-case and qualified;
+    an implementation also stands for its type (OSATE's ``AadlUtil.isSubClassifier``)."""
+    out: set[str] = set()
+    todo: list[tuple[str, Any]] = [(name, None)]
+    while todo:
+        text, context = todo.pop()
+        found = None
+        if getattr(holder, "units", None):
+            try:
+                found = find_classifier(holder, text, context)
+            except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
+                found = None
+        key = (qualified_name(found) if found is not None else text).lower()
+        if key in out:
+            continue
+        out.add(key)
+        if found is None:
+            package, _sep, local = key.rpartition("::")
+            if "." in local:  # Pkg::T.impl without its declaration: its type is Pkg::T
+                out.add(f"{package}::{local.partition('.')[0]}" if package else local.partition(".")[0])
+            continue
+        for step in (getattr(found, "extended", None), getattr(found, "type", None)):
+            if step:
+                todo.append((step if isinstance(step, str) else qualified_name(step), found))
+    return out
+
+
+def _of_class(root: Any, classes: list[Any], mode: Any) -> list[Any]:
+    """The processors, virtual processors and systems below ``root`` whose classifier is or
+    extends one of ``classes`` (``Allowed_Processor_Binding_Class``: AS5506C's processor,
+    virtual processor or system classifiers; OSATE's binding check accepts a bound component
+    whose classifier is the same as or extends one of them, an implementation also matching
+    its type)."""
+    holder = root_of(root)
+    wanted: set[str] = set()
+    for item in classes:
+        text = item if isinstance(item, str) else getattr(item, "classifier", None) or str(item)
+        wanted.add(_canonical(holder, str(text)))
+    found = []
+    for ci in component_instances(root, include_root=False):
+        if category_of(ci) not in ("processor", "virtualProcessor", "system") or not mode.active(ci):
+            continue
+        classifier = ci.classifier if isinstance(ci.classifier, str) else _kind(ci)
+        if classifier and _lineage(holder, classifier) & wanted:
+            found.append(ci)
+    return found
+
+
+def _canonical(holder: Any, name: str) -> str:
+    """``name`` qualified and lower-case (as declared when the model holds it)."""
+    if getattr(holder, "units", None):
+        try:
+            found = find_classifier(holder, name)
+        except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
+            found = None
+        if found is not None:
+            return qualified_name(found).lower()
+    return name.lower()
 
 
 def _from_unit_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: Any) -> list[Any]:
@@ -407,6 +505,22 @@ def _from_unit_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: 
         found = reader.targets(obj, name, mode)
         if found:
             return found
+        obj = obj.eContainer()
+    return []
+
+
+def _has_threads(process: Any) -> bool:
+    return any(category_of(t) == "thread" for t in component_instances(process, include_root=False))
+
+
+def _classes_up(reader: PropertyReader, obj: Any, mode: Any, root: Any) -> list[Any]:
+    """``Allowed_Processor_Binding_Class`` of ``obj``, else of its nearest container that has one
+    (the property is inherited)."""
+    while obj is not None and obj is not root:
+        value = reader.value(obj, "Deployment_Properties::Allowed_Processor_Binding_Class", mode)
+        items = value if isinstance(value, list) else [value] if value is not None else []
+        if items:
+            return items
         obj = obj.eContainer()
     return []
 
@@ -422,10 +536,12 @@ def deployment_problem(
     granularity: str = "process",
 ) -> DeploymentProblem:
     """The deployment problem of an instance (see the module). ``processes`` (instances or paths;
-    default: every active process with threads) and ``processors`` (default: every active core)
-    narrow it; ``allowed`` maps unit paths (with or without the root's name) to the core paths it
-    may take; ``execution_times`` gives process path → core path → thread path → CET in seconds
-    for units measured per core type (those run only on the cores listed)."""
+    default: every active process with threads, or without threads but with an
+    ``SEI::MIPSBudget``: a process budgeted before its threads are modelled) and ``processors``
+    (default: every active core) narrow it; ``allowed`` maps unit paths (with or without the
+    root's name) to the core paths it may take; ``execution_times`` gives process path → core
+    path → thread path → CET in seconds for units measured per core type (those run only on the
+    cores listed)."""
     if granularity not in ("process", "thread"):
         raise ModelError(f"unknown granularity {granularity!r} (process, thread)")
     root = instance_root(source)
@@ -439,8 +555,8 @@ def deployment_problem(
             ci
             for ci in components
             if category_of(ci) == "process"
-            and any(category_of(t) == "thread" for t in component_instances(ci, include_root=False))
             and mode.active(ci)
+            and (_has_threads(ci) or reader.mips_budget(ci, mode) > 0)
         ]
     else:
         process_objs = _resolve(root, processes, "process")
@@ -483,7 +599,7 @@ def deployment_problem(
     units: list[Unit] = []
     for obj in process_objs:
         threads = [t for t in component_instances(obj, include_root=False) if category_of(t) == "thread"]
-        if granularity == "thread":
+        if granularity == "thread" and threads:
             for t in threads:
                 unit_objs.append(t)
                 units.append(Unit(instance_path(t), [thread_of(t)], reader.mips_budget(t, mode), memory(t)))
@@ -527,17 +643,29 @@ def deployment_problem(
             )
         )
     index = {c.path: i for i, c in enumerate(cores)}
+    bindings = ProcessorBindings(reader)
     allowed_lists = []
     current = []
+    targets: dict[tuple[int, int], str] = {}
     pins = device_pins(root, unit_objs, [c.path for c in cores], mode)
     for u, (unit, obj) in enumerate(zip(units, unit_objs, strict=True)):
         chosen = set(range(len(cores)))
         declared = _from_unit_up(reader, obj, "Allowed_Processor_Binding", mode, root)
         if declared:
-            covered = _covered(declared, index)
-            chosen &= covered
+            covered = _covered(declared, index, bindings, mode)
+            chosen &= set(covered)
+            targets.update({(u, k): vp for k, vp in covered.items() if vp is not None})
             names = ", ".join(instance_path(t) for t in declared)
             pins.append(Pin(u, names, "", tuple(sorted(covered))))
+        classes = _classes_up(reader, obj, mode, root)
+        if classes:
+            covered = _covered(_of_class(root, classes, mode), index, bindings, mode)
+            chosen &= set(covered)
+            for k, vp in covered.items():
+                if vp is not None:
+                    targets.setdefault((u, k), vp)
+            names = ", ".join(str(c) for c in classes)
+            pins.append(Pin(u, names, "", tuple(sorted(covered)), "Allowed_Processor_Binding_Class"))
         for pin in pins:
             if pin.unit == u and pin.device:
                 chosen &= set(pin.cores)
@@ -553,9 +681,8 @@ def deployment_problem(
                 given.add(index[key])
             chosen &= given
         allowed_lists.append(sorted(chosen))
-        current.append(
-            frozenset(_covered(_from_unit_up(reader, obj, "Actual_Processor_Binding", mode, root), index))
-        )
+        actual = _from_unit_up(reader, obj, "Actual_Processor_Binding", mode, root)
+        current.append(frozenset(_covered(actual, index, bindings, mode)))
     times = None
     if execution_times:
         if granularity != "process":
@@ -588,6 +715,7 @@ def deployment_problem(
         diagnostics,
         chain_costs(root, unit_objs, mode),
         sorted(pins, key=lambda p: (p.unit, p.device, p.board)),
+        {key: vp for key, vp in targets.items() if key[1] in allowed_lists[key[0]]},
     )
     for u, unit in enumerate(units):
         if all(problem.load[u][c] is None for c in allowed_lists[u]):

@@ -23,7 +23,8 @@ from pyecore.ecore import EObject
 
 from rosaadl import model as _model
 from rosaadl.analysis.deployment_proposal import DeploymentProposal, propose_deployment
-from rosaadl.errors import ModelError
+from rosaadl.analysis.instance_values import category_of
+from rosaadl.errors import Location, ModelError
 from rosaadl.fileio import atomic_write_bytes, cannot_write
 
 __all__ = ["DeployRun", "check_proposed", "deploy_instance", "proposed_package_name"]
@@ -119,9 +120,22 @@ def deploy_instance(
     """Solve the deployment of ``instance`` (its model must hold the declarative units it was
     instantiated from) and write the best binding as ``<package>_proposed.aadl`` in ``folder``."""
     model = instance.eContainer()
+    category = category_of(instance) or "system"
+    if category != "system":
+        raise ModelError(
+            f"the root {instance.classifier or instance.name} is a {category}, not a system: "
+            "deploy binds the processes of a system implementation to its processors",
+            Location(path=instance.name),
+        )
     proposal = propose_deployment(
         instance, time_limit=time_limit, keep=keep, granularity=granularity, deterministic=deterministic
     )
+    if not proposal.problem.units:
+        raise ModelError(
+            f"{instance.name} has no process to bind: no active process with threads or an "
+            "SEI::MIPSBudget in its first mode",
+            Location(path=instance.name),
+        )
     if not proposal.feasible:
         return DeployRun(proposal, None, None, None)
     implementation = _root_implementation(instance, model)

@@ -5,6 +5,7 @@ the JSON of the issue, infeasible models explained with exit 1, and the demo's f
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -183,3 +184,91 @@ def test_the_demos_failing_deployment_gets_a_binding_that_passes(tmp_path, capsy
     left = {d.message for d in report.diagnostics if d.severity == "error"}
     assert left and left <= {d.message for d in before.diagnostics if d.severity == "error"}
     assert all("SEI::MIPSBudget" in message for message in left)
+
+
+HOSTILE = """package hostile
+public
+  thread sampled
+  properties
+    Dispatch_Protocol => Periodic;
+    Compute_Execution_Time => 1 ms .. 2 ms;
+  end sampled;
+  process node
+  end node;
+  process implementation node.sampled
+  subcomponents
+    t : thread sampled;
+  end node.sampled;
+  processor cpu
+  end cpu;
+  processor implementation cpu.impl
+  end cpu.impl;
+  virtual processor part
+  end part;
+  system robot
+  end robot;
+  system implementation robot.shells
+  subcomponents
+    c0 : processor cpu;
+    a : process node;
+    b : process node;
+  end robot.shells;
+  system implementation robot.unperiodic
+  subcomponents
+    c0 : processor cpu;
+    a : process node.sampled;
+  end robot.unperiodic;
+  system implementation robot.nowhere
+  subcomponents
+    c0 : processor cpu;
+    loose : virtual processor part;
+    a : process node.sampled;
+  properties
+    Allowed_Processor_Binding => (reference (loose)) applies to a;
+  end robot.nowhere;
+end hostile;
+"""
+
+
+@pytest.mark.parametrize(
+    ("root", "message"),
+    [
+        ("hostile::cpu.impl", "is a processor, not a system"),
+        ("hostile::node.sampled", "is a process, not a system"),
+        ("hostile::robot.shells", "has no process to bind"),
+    ],
+)
+def test_what_cannot_be_deployed_is_a_located_error_and_writes_nothing(tmp_path, capsys, root, message):
+    model = tmp_path / "hostile.aadl"
+    model.write_text(HOSTILE)
+    out = tmp_path / "out"
+    code, _stdout, err = run(["deploy", str(model), "--root", root, "-o", str(out)], capsys)
+    assert code == 1 and message in err and "Traceback" not in err
+    assert re.search(r"error: \w+_Instance: ", err)  # located at the instance
+    assert not out.exists()
+
+
+def test_what_the_problem_cannot_read_is_warned_beside_the_proposal(tmp_path, capsys):
+    model = tmp_path / "hostile.aadl"
+    model.write_text(HOSTILE)
+    code, stdout, err = run(
+        [
+            "--format",
+            "json",
+            "deploy",
+            str(model),
+            "--root",
+            "hostile::robot.unperiodic",
+            "-o",
+            str(tmp_path),
+        ],
+        capsys,
+    )
+    assert code == 0, err
+    data = json.loads(stdout)
+    assert any("has no Period" in w["message"] and w["path"].endswith("a.t") for w in data["warnings"])
+    # a virtual processor bound nowhere leaves its unit no core, and the reason says which
+    code, _stdout, err = run(
+        ["deploy", str(model), "--root", "hostile::robot.nowhere", "-o", str(tmp_path)], capsys
+    )
+    assert code == 1 and "Allowed_Processor_Binding (loose) names no candidate processor" in err
