@@ -151,6 +151,9 @@ class DeploymentProblem:
     #: (unit, core) -> the virtual processor on that core the unit is bound to (its
     #: ``Allowed_Processor_Binding`` names it); by default a unit is bound to the core itself
     targets: dict[tuple[int, int], str] = field(default_factory=dict)
+    #: unit -> the paths of its threads bound otherwise than the unit (their own
+    #: ``Actual_Processor_Binding`` beats the one they inherit: a proposal must restate it)
+    bound_inside: dict[int, tuple[str, ...]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.times is None:
@@ -509,6 +512,22 @@ def _from_unit_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: 
     return []
 
 
+def _bound_inside(
+    reader: PropertyReader, unit: Any, own: list[Any], mode: Any
+) -> list[tuple[Any, list[Any]]]:
+    """The threads of ``unit`` whose ``Actual_Processor_Binding`` is not the unit's (their own
+    value, which beats the one a thread inherits from its process), with their targets."""
+    mine = [instance_path(t) for t in own]
+    out = []
+    for thread in component_instances(unit, include_root=False):
+        if category_of(thread) != "thread":
+            continue
+        found = reader.targets(thread, "Actual_Processor_Binding", mode) or []
+        if found and [instance_path(t) for t in found] != mine:
+            out.append((thread, found))
+    return out
+
+
 def _has_threads(process: Any) -> bool:
     return any(category_of(t) == "thread" for t in component_instances(process, include_root=False))
 
@@ -647,6 +666,7 @@ def deployment_problem(
     allowed_lists = []
     current = []
     targets: dict[tuple[int, int], str] = {}
+    bound_inside: dict[int, tuple[str, ...]] = {}
     pins = device_pins(root, unit_objs, [c.path for c in cores], mode)
     for u, (unit, obj) in enumerate(zip(units, unit_objs, strict=True)):
         chosen = set(range(len(cores)))
@@ -681,8 +701,20 @@ def deployment_problem(
                 given.add(index[key])
             chosen &= given
         allowed_lists.append(sorted(chosen))
-        actual = _from_unit_up(reader, obj, "Actual_Processor_Binding", mode, root)
-        current.append(frozenset(_covered(actual, index, bindings, mode)))
+        own = _from_unit_up(reader, obj, "Actual_Processor_Binding", mode, root)
+        actual = _covered(own, index, bindings, mode)
+        inside = _bound_inside(reader, obj, own, mode)
+        if inside:
+            bound_inside[u] = tuple(instance_path(t) for t, _targets in inside)
+            if not actual:  # the threads are bound, not the process: where they are now
+                for _t, found in inside:
+                    for k, vp in _covered(found, index, bindings, mode).items():
+                        actual.setdefault(k, vp)
+        current.append(frozenset(actual))
+        if not declared:  # a unit that stays on its core keeps its partition there
+            for k, vp in actual.items():
+                if vp is not None:
+                    targets.setdefault((u, k), vp)
     times = None
     if execution_times:
         if granularity != "process":
@@ -716,6 +748,7 @@ def deployment_problem(
         chain_costs(root, unit_objs, mode),
         sorted(pins, key=lambda p: (p.unit, p.device, p.board)),
         {key: vp for key, vp in targets.items() if key[1] in allowed_lists[key[0]]},
+        bound_inside,
     )
     for u, unit in enumerate(units):
         if all(problem.load[u][c] is None for c in allowed_lists[u]):

@@ -81,22 +81,35 @@ def _proposed_text(proposal: DeploymentProposal, implementation: EObject, name: 
     from rosaadl.exporters.aadl_text import unit_file_name, write_unit
 
     package = implementation.eContainer()
-    root = proposal.problem.root + "."
-    pairs = [(u.removeprefix(root), c.removeprefix(root)) for u, c in proposal.binding()]
-    units = {u.lower() for u, _c in pairs}
+    problem = proposal.problem
+    root = problem.root + "."
+    pairs = []
+    for u, (unit, core) in enumerate(proposal.binding()):
+        pairs.append((unit.removeprefix(root), core.removeprefix(root)))
+        # a thread bound otherwise than its process keeps its own binding unless restated
+        pairs += [(t.removeprefix(root), core.removeprefix(root)) for t in problem.bound_inside.get(u, ())]
+    units = [u.lower() for u, _c in pairs]
+
+    def rebound(path: object) -> bool:
+        text = str(path).lower()
+        return any(text == u or text.startswith(u + ".") for u in units)
+
     owned = implementation.ownedPropertyAssociations
     kept = list(owned)
-    replaced = [
-        a
-        for a in kept
-        if (a.property or "").rpartition("::")[2].lower() == _BINDING.lower()
-        and any(str(p).lower() in units for p in a.appliesTo)
-    ]
+    applied = {id(a): list(a.appliesTo) for a in kept}
+    bindings = [a for a in kept if (a.property or "").rpartition("::")[2].lower() == _BINDING.lower()]
     added = [_association(c, u) for u, c in pairs]
     old_name = package.name
     try:
-        for a in replaced:
-            owned.remove(a)
+        # the root's associations for what is bound anew go; one that also applies to other
+        # elements stays for those
+        for a in bindings:
+            left = [p for p in a.appliesTo if not rebound(p)]
+            if not left:
+                owned.remove(a)
+            elif len(left) < len(a.appliesTo):
+                a.appliesTo.clear()
+                a.appliesTo.extend(left)
         owned.extend(added)
         package.name = name
         return unit_file_name(package), write_unit(package)
@@ -106,6 +119,10 @@ def _proposed_text(proposal: DeploymentProposal, implementation: EObject, name: 
             owned.remove(a)
         owned.clear()
         owned.extend(kept)
+        for a in bindings:
+            if list(a.appliesTo) != applied[id(a)]:
+                a.appliesTo.clear()
+                a.appliesTo.extend(applied[id(a)])
 
 
 def deploy_instance(
