@@ -577,6 +577,24 @@ def deployment_problem(
             and mode.active(ci)
             and (_has_threads(ci) or reader.mips_budget(ci, mode) > 0)
         ]
+        asleep = [
+            instance_path(ci)
+            for ci in components
+            if category_of(ci) in ("process", "processor")
+            and not mode.active(ci)
+            and (category_of(ci) == "processor" or _has_threads(ci) or reader.mips_budget(ci, mode) > 0)
+        ]
+        if asleep:
+            diagnostics.append(
+                Diagnostic(
+                    "warning",
+                    f"the deployment is searched in the first system mode {mode.label or mode.name}: "
+                    f"{len(asleep)} processes and processors of other modes are left as they are "
+                    f"bound ({', '.join(p.partition('.')[2] for p in asleep[:5])}"
+                    f"{', ...' if len(asleep) > 5 else ''})",
+                    Location(path=asleep[0]),
+                )
+            )
     else:
         process_objs = _resolve(root, processes, "process")
     if processors is None:

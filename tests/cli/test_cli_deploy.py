@@ -218,6 +218,16 @@ public
     c0 : processor cpu;
     a : process node.sampled;
   end robot.unperiodic;
+  system implementation robot.modal
+  subcomponents
+    c0 : processor cpu;
+    c1 : processor cpu in modes (full);
+    a : process node.sampled;
+    b : process node.sampled in modes (full);
+  modes
+    safe : initial mode;
+    full : mode;
+  end robot.modal;
   system implementation robot.nowhere
   subcomponents
     c0 : processor cpu;
@@ -267,6 +277,17 @@ def test_what_the_problem_cannot_read_is_warned_beside_the_proposal(tmp_path, ca
     assert code == 0, err
     data = json.loads(stdout)
     assert any("has no Period" in w["message"] and w["path"].endswith("a.t") for w in data["warnings"])
+    # what exists only in other modes is left as it is, and said
+    code, stdout, err = run(
+        ["--format", "json", "deploy", str(model), "--root", "hostile::robot.modal", "-o", str(tmp_path)],
+        capsys,
+    )
+    assert code == 0, err
+    data = json.loads(stdout)
+    assert [b["path"] for b in data["binding"]] == ["robot_modal_Instance.a"]
+    assert any(
+        "first system mode (safe)" in w["message"] and "(b, c1)" in w["message"] for w in data["warnings"]
+    )
     # a virtual processor bound nowhere leaves its unit no core, and the reason says which
     code, _stdout, err = run(
         ["deploy", str(model), "--root", "hostile::robot.nowhere", "-o", str(tmp_path)], capsys
