@@ -15,11 +15,16 @@ first system mode:
   :mod:`rosaadl.analysis.schedulability` (response-time analysis where the core has priorities)
   under the core's ``Scheduling_Protocol`` (preemptive rate monotonic when it has none).
 * **candidates**: ``Allowed_Processor_Binding`` of the unit (or of the process holding a thread),
-  a processor or system standing for the cores inside it, intersected with the caller's
+  a processor or system standing for the cores inside it and a virtual processor for the core it
+  runs on (then named by the binding, :meth:`DeploymentProblem.target`), and
+  ``Allowed_Processor_Binding_Class`` (cores whose classifier is or extends one listed, OSATE's
+  binding check), intersected with the caller's
   ``allowed`` and with the board of every device the unit is connected to (the **pins**,
   :func:`~rosaadl.analysis.deployment_links.device_pins`; the ``Allowed_Processor_Binding``
   restrictions are listed as pins too); the **current binding** from ``Actual_Processor_Binding``
-  (the moves objective).
+  (the moves objective; a process whose threads are bound, not itself, is where its threads are;
+  the threads bound otherwise than their unit are kept in ``bound_inside``, for the proposal to
+  restate).
 * **boards**: a core's board is its nearest enclosing system below the root, else its outermost
   enclosing processor, else the core itself. Units on different boards talk over the bus.
 * **memory**: a unit's RAM (Data + Heap + Stack size of its subtree, else ``SEI::RAMBudget``)
