@@ -48,6 +48,14 @@ from typing import Any
 from rosaadl.analysis.busload import data_size_kbyte, message_rate
 from rosaadl.analysis.demand import ResourceDemand
 from rosaadl.analysis.deployment_links import ChainCost, Pin, chain_costs, device_pins
+from rosaadl.analysis.deployment_targets import (
+    bound_inside,
+    classes_up,
+    classifier_name,
+    covered_cores,
+    declared_up,
+    of_class,
+)
 from rosaadl.analysis.instance_values import (
     ProcessorBindings,
     PropertyReader,
@@ -56,14 +64,11 @@ from rosaadl.analysis.instance_values import (
     system_modes,
 )
 from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
-from rosaadl.errors import Diagnostic, Location, ModelError, RosaadlError
+from rosaadl.errors import Diagnostic, Location, ModelError
 from rosaadl.model import (
     component_instances,
-    find_classifier,
     find_instance,
     instance_path,
-    qualified_name,
-    root_of,
     walk,
 )
 
@@ -399,12 +404,6 @@ def _board_of(core: Any, root: Any) -> Any:
     return outer_processor if outer_processor is not None else core
 
 
-def _kind(obj: Any) -> str:
-    classifier = getattr(obj, "classifier", None)
-    text = classifier if isinstance(classifier, str) else getattr(classifier, "name", None)
-    return str(text) if text else ""
-
-
 def _resolve(root: Any, items: Iterable[Any], what: str) -> list[Any]:
     out = []
     for item in items:
@@ -419,134 +418,8 @@ def _resolve(root: Any, items: Iterable[Any], what: str) -> list[Any]:
     return out
 
 
-def _covered(
-    targets: Iterable[Any], index: dict[str, int], bindings: ProcessorBindings, mode: Any
-) -> dict[int, str | None]:
-    """The candidate cores a list of binding targets stands for: a core, the cores inside a
-    processor or system, or the core a virtual processor runs on (``Actual_Processor_Binding``,
-    else the processor containing it, as OSATE's InstanceModelUtil follows it). Core index ->
-    the virtual processor to name in the binding (None: the core itself; a core named itself
-    wins over a virtual processor on it)."""
-    out: dict[int, str | None] = {}
-
-    def inside(path: str) -> list[int]:
-        if path in index:
-            return [index[path]]
-        return [i for p, i in index.items() if p.startswith(path + ".")]
-
-    for target in targets:
-        path = instance_path(target)
-        if category_of(target) == "virtualProcessor":
-            host = bindings.physical_processor(target, mode)
-            for k in inside(instance_path(host)) if host is not None else []:
-                out.setdefault(k, path)
-        else:
-            for k in inside(path):
-                out[k] = None
-    return out
-
-
-def _lineage(holder: Any, name: str) -> set[str]:
-    """The classifier ``name`` and every classifier it is or extends, lower-case and qualified;
-    an implementation also stands for its type (OSATE's ``AadlUtil.isSubClassifier``)."""
-    out: set[str] = set()
-    todo: list[tuple[str, Any]] = [(name, None)]
-    while todo:
-        text, context = todo.pop()
-        found = None
-        if getattr(holder, "units", None):
-            try:
-                found = find_classifier(holder, text, context)
-            except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
-                found = None
-        key = (qualified_name(found) if found is not None else text).lower()
-        if key in out:
-            continue
-        out.add(key)
-        if found is None:
-            package, _sep, local = key.rpartition("::")
-            if "." in local:  # Pkg::T.impl without its declaration: its type is Pkg::T
-                out.add(f"{package}::{local.partition('.')[0]}" if package else local.partition(".")[0])
-            continue
-        for step in (getattr(found, "extended", None), getattr(found, "type", None)):
-            if step:
-                todo.append((step if isinstance(step, str) else qualified_name(step), found))
-    return out
-
-
-def _of_class(root: Any, classes: list[Any], mode: Any) -> list[Any]:
-    """The processors, virtual processors and systems below ``root`` whose classifier is or
-    extends one of ``classes`` (``Allowed_Processor_Binding_Class``: AS5506C's processor,
-    virtual processor or system classifiers; OSATE's binding check accepts a bound component
-    whose classifier is the same as or extends one of them, an implementation also matching
-    its type)."""
-    holder = root_of(root)
-    wanted: set[str] = set()
-    for item in classes:
-        text = item if isinstance(item, str) else getattr(item, "classifier", None) or str(item)
-        wanted.add(_canonical(holder, str(text)))
-    found = []
-    for ci in component_instances(root, include_root=False):
-        if category_of(ci) not in ("processor", "virtualProcessor", "system") or not mode.active(ci):
-            continue
-        classifier = ci.classifier if isinstance(ci.classifier, str) else _kind(ci)
-        if classifier and _lineage(holder, classifier) & wanted:
-            found.append(ci)
-    return found
-
-
-def _canonical(holder: Any, name: str) -> str:
-    """``name`` qualified and lower-case (as declared when the model holds it)."""
-    if getattr(holder, "units", None):
-        try:
-            found = find_classifier(holder, name)
-        except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
-            found = None
-        if found is not None:
-            return qualified_name(found).lower()
-    return name.lower()
-
-
-def _from_unit_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: Any) -> list[Any]:
-    """The targets of a binding property on ``obj``, else on its nearest container that has one."""
-    while obj is not None and obj is not root:
-        found = reader.targets(obj, name, mode)
-        if found:
-            return found
-        obj = obj.eContainer()
-    return []
-
-
-def _bound_inside(
-    reader: PropertyReader, unit: Any, own: list[Any], mode: Any
-) -> list[tuple[Any, list[Any]]]:
-    """The threads of ``unit`` whose ``Actual_Processor_Binding`` is not the unit's (their own
-    value, which beats the one a thread inherits from its process), with their targets."""
-    mine = [instance_path(t) for t in own]
-    out = []
-    for thread in component_instances(unit, include_root=False):
-        if category_of(thread) != "thread":
-            continue
-        found = reader.targets(thread, "Actual_Processor_Binding", mode) or []
-        if found and [instance_path(t) for t in found] != mine:
-            out.append((thread, found))
-    return out
-
-
 def _has_threads(process: Any) -> bool:
     return any(category_of(t) == "thread" for t in component_instances(process, include_root=False))
-
-
-def _classes_up(reader: PropertyReader, obj: Any, mode: Any, root: Any) -> list[Any]:
-    """``Allowed_Processor_Binding_Class`` of ``obj``, else of its nearest container that has one
-    (the property is inherited)."""
-    while obj is not None and obj is not root:
-        value = reader.value(obj, "Deployment_Properties::Allowed_Processor_Binding_Class", mode)
-        items = value if isinstance(value, list) else [value] if value is not None else []
-        if items:
-            return items
-        obj = obj.eContainer()
-    return []
 
 
 def deployment_problem(
@@ -672,7 +545,7 @@ def deployment_problem(
                 scheduler,
                 preemptive,
                 instance_path(board),
-                _kind(obj) or _kind(obj.eContainer()),
+                classifier_name(obj) or classifier_name(obj.eContainer()),
             )
         )
     if schedulability and defaulted:
@@ -689,20 +562,20 @@ def deployment_problem(
     allowed_lists = []
     current = []
     targets: dict[tuple[int, int], str] = {}
-    bound_inside: dict[int, tuple[str, ...]] = {}
+    restated: dict[int, tuple[str, ...]] = {}
     pins = device_pins(root, unit_objs, [c.path for c in cores], mode)
     for u, (unit, obj) in enumerate(zip(units, unit_objs, strict=True)):
         chosen = set(range(len(cores)))
-        declared = _from_unit_up(reader, obj, "Allowed_Processor_Binding", mode, root)
+        declared = declared_up(reader, obj, "Allowed_Processor_Binding", mode, root)
         if declared:
-            covered = _covered(declared, index, bindings, mode)
+            covered = covered_cores(declared, index, bindings, mode)
             chosen &= set(covered)
             targets.update({(u, k): vp for k, vp in covered.items() if vp is not None})
             names = ", ".join(instance_path(t) for t in declared)
             pins.append(Pin(u, names, "", tuple(sorted(covered))))
-        classes = _classes_up(reader, obj, mode, root)
+        classes = classes_up(reader, obj, mode, root)
         if classes:
-            covered = _covered(_of_class(root, classes, mode), index, bindings, mode)
+            covered = covered_cores(of_class(root, classes, mode), index, bindings, mode)
             chosen &= set(covered)
             for k, vp in covered.items():
                 if vp is not None:
@@ -724,14 +597,14 @@ def deployment_problem(
                 given.add(index[key])
             chosen &= given
         allowed_lists.append(sorted(chosen))
-        own = _from_unit_up(reader, obj, "Actual_Processor_Binding", mode, root)
-        actual = _covered(own, index, bindings, mode)
-        inside = _bound_inside(reader, obj, own, mode)
+        own = declared_up(reader, obj, "Actual_Processor_Binding", mode, root)
+        actual = covered_cores(own, index, bindings, mode)
+        inside = bound_inside(reader, obj, own, mode)
         if inside:
-            bound_inside[u] = tuple(instance_path(t) for t, _targets in inside)
+            restated[u] = tuple(instance_path(t) for t, _targets in inside)
             if not actual:  # the threads are bound, not the process: where they are now
                 for _t, found in inside:
-                    for k, vp in _covered(found, index, bindings, mode).items():
+                    for k, vp in covered_cores(found, index, bindings, mode).items():
                         actual.setdefault(k, vp)
         current.append(frozenset(actual))
         if not declared:  # a unit that stays on its core keeps its partition there
@@ -771,7 +644,7 @@ def deployment_problem(
         chain_costs(root, unit_objs, mode),
         sorted(pins, key=lambda p: (p.unit, p.device, p.board)),
         {key: vp for key, vp in targets.items() if key[1] in allowed_lists[key[0]]},
-        bound_inside,
+        restated,
     )
     for u, unit in enumerate(units):
         if all(problem.load[u][c] is None for c in allowed_lists[u]):
