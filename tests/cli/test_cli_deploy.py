@@ -240,6 +240,10 @@ end hostile;
 """
 
 
+def deploy(model: Path, root: str, out: Path, *options: str) -> list[str]:
+    return [*options, "deploy", str(model), "--root", root, "-o", str(out)]
+
+
 @pytest.mark.parametrize(
     ("root", "message"),
     [
@@ -252,7 +256,7 @@ def test_what_cannot_be_deployed_is_a_located_error_and_writes_nothing(tmp_path,
     model = tmp_path / "hostile.aadl"
     model.write_text(HOSTILE)
     out = tmp_path / "out"
-    code, _stdout, err = run(["deploy", str(model), "--root", root, "-o", str(out)], capsys)
+    code, _stdout, err = run(deploy(model, root, out), capsys)
     assert code == 1 and message in err and "Traceback" not in err
     assert re.search(r"error: \w+_Instance: ", err)  # located at the instance
     assert not out.exists()
@@ -261,27 +265,13 @@ def test_what_cannot_be_deployed_is_a_located_error_and_writes_nothing(tmp_path,
 def test_what_the_problem_cannot_read_is_warned_beside_the_proposal(tmp_path, capsys):
     model = tmp_path / "hostile.aadl"
     model.write_text(HOSTILE)
-    code, stdout, err = run(
-        [
-            "--format",
-            "json",
-            "deploy",
-            str(model),
-            "--root",
-            "hostile::robot.unperiodic",
-            "-o",
-            str(tmp_path),
-        ],
-        capsys,
-    )
+    json_out = ("--format", "json")
+    code, stdout, err = run(deploy(model, "hostile::robot.unperiodic", tmp_path, *json_out), capsys)
     assert code == 0, err
     data = json.loads(stdout)
     assert any("has no Period" in w["message"] and w["path"].endswith("a.t") for w in data["warnings"])
     # what exists only in other modes is left as it is, and said
-    code, stdout, err = run(
-        ["--format", "json", "deploy", str(model), "--root", "hostile::robot.modal", "-o", str(tmp_path)],
-        capsys,
-    )
+    code, stdout, err = run(deploy(model, "hostile::robot.modal", tmp_path, *json_out), capsys)
     assert code == 0, err
     data = json.loads(stdout)
     assert [b["path"] for b in data["binding"]] == ["robot_modal_Instance.a"]
@@ -289,9 +279,7 @@ def test_what_the_problem_cannot_read_is_warned_beside_the_proposal(tmp_path, ca
         "first system mode (safe)" in w["message"] and "(b, c1)" in w["message"] for w in data["warnings"]
     )
     # a virtual processor bound nowhere leaves its unit no core, and the reason says which
-    code, _stdout, err = run(
-        ["deploy", str(model), "--root", "hostile::robot.nowhere", "-o", str(tmp_path)], capsys
-    )
+    code, _stdout, err = run(deploy(model, "hostile::robot.nowhere", tmp_path), capsys)
     assert code == 1 and "Allowed_Processor_Binding (loose) names no candidate processor" in err
 
 
