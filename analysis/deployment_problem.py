@@ -647,7 +647,7 @@ def deployment_problem(
         restated,
     )
     for u, unit in enumerate(units):
-        if all(problem.load[u][c] is None for c in allowed_lists[u]):
+        if allowed_lists[u] and all(problem.load[u][c] is None for c in allowed_lists[u]):
             diagnostics.append(
                 Diagnostic(
                     "error",

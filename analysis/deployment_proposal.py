@@ -164,7 +164,7 @@ class DeploymentProposal:
                 moved.append(
                     [
                         _short(p, p.units[u].path),
-                        ", ".join(_short(p, p.cores[k].path) for k in now) or "-",
+                        ", ".join(_short(p, p.target(u, k)) for k in now) or "-",
                         _short(p, p.target(u, c)),
                     ]
                 )

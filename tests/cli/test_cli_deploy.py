@@ -281,6 +281,7 @@ def test_what_the_problem_cannot_read_is_warned_beside_the_proposal(tmp_path, ca
     # a virtual processor bound nowhere leaves its unit no core, and the reason says which
     code, _stdout, err = run(deploy(model, "hostile::robot.nowhere", tmp_path), capsys)
     assert code == 1 and "Allowed_Processor_Binding (loose) names no candidate processor" in err
+    assert "demands MIPS" not in err  # no core to take is not a core without MIPS
 
 
 THREADS_BOUND = """package threads_bound
