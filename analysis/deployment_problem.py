@@ -61,6 +61,7 @@ from rosaadl.analysis.instance_values import (
     PropertyReader,
     category_of,
     instance_root,
+    relative_path,
     system_modes,
 )
 from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
@@ -567,21 +568,37 @@ def deployment_problem(
     for u, (unit, obj) in enumerate(zip(units, unit_objs, strict=True)):
         chosen = set(range(len(cores)))
         declared = declared_up(reader, obj, "Allowed_Processor_Binding", mode, root)
-        if declared:
-            covered = covered_cores(declared, index, bindings, mode)
-            chosen &= set(covered)
-            targets.update({(u, k): vp for k, vp in covered.items() if vp is not None})
-            names = ", ".join(instance_path(t) for t in declared)
-            pins.append(Pin(u, names, "", tuple(sorted(covered))))
         classes = classes_up(reader, obj, mode, root)
-        if classes:
-            covered = covered_cores(of_class(root, classes, mode), index, bindings, mode)
-            chosen &= set(covered)
-            for k, vp in covered.items():
-                if vp is not None:
-                    targets.setdefault((u, k), vp)
-            names = ", ".join(str(c) for c in classes)
-            pins.append(Pin(u, names, "", tuple(sorted(covered)), "Allowed_Processor_Binding_Class"))
+        restrictions = [(declared, classes, "")]
+        # a thread's own restriction holds for the process it is bound with (OSATE checks threads)
+        for thread in component_instances(obj, include_root=False) if obj is not None else []:
+            if category_of(thread) != "thread":
+                continue
+            mine = reader.targets(thread, "Allowed_Processor_Binding", mode) or []
+            kinds = classes_up(reader, thread, mode, obj)
+            if [instance_path(t) for t in mine] != [instance_path(t) for t in declared] and mine:
+                restrictions.append((mine, [], f" of {relative_path(thread)}"))
+            if kinds and kinds != classes:
+                restrictions.append(([], kinds, f" of {relative_path(thread)}"))
+        for targets_, classes_, holder in restrictions:
+            if targets_:
+                covered = covered_cores(targets_, index, bindings, mode)
+                chosen &= set(covered)
+                for k, vp in covered.items():
+                    if vp is not None:
+                        targets.setdefault((u, k), vp)
+                names = ", ".join(instance_path(t) for t in targets_)
+                pins.append(Pin(u, names, "", tuple(sorted(covered)), f"Allowed_Processor_Binding{holder}"))
+            if classes_:
+                covered = covered_cores(of_class(root, classes_, mode), index, bindings, mode)
+                chosen &= set(covered)
+                for k, vp in covered.items():
+                    if vp is not None:
+                        targets.setdefault((u, k), vp)
+                names = ", ".join(str(c) for c in classes_)
+                pins.append(
+                    Pin(u, names, "", tuple(sorted(covered)), f"Allowed_Processor_Binding_Class{holder}")
+                )
         for pin in pins:
             if pin.unit == u and pin.device:
                 chosen &= set(pin.cores)

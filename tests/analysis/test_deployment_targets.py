@@ -98,6 +98,16 @@ public
     Actual_Processor_Binding => (reference (part1)) applies to p;
     Allowed_Processor_Binding => (reference (s.v1)) applies to q;
   end robot.partitions;
+  system implementation robot.threads
+  subcomponents
+    c0 : processor other;
+    c1 : processor cpu.impl;
+    p : process node.impl;
+    q : process node.impl;
+  properties
+    Allowed_Processor_Binding => (reference (c1)) applies to p.w;
+    Allowed_Processor_Binding_Class => (classifier (targets::other)) applies to q.w;
+  end robot.threads;
   system implementation robot.budgets
   subcomponents
     c0 : processor cpu.impl;
@@ -159,3 +169,16 @@ def test_a_process_budgeted_before_its_threads_is_bound(model):
     assert [u.path.partition(".")[2] for u in problem.units] == ["a", "b"]
     binding = _binding(model, "targets::robot.budgets")
     assert sorted(binding.values()) == ["c0", "c1"]
+
+
+def test_a_threads_restriction_holds_for_its_process(model):
+    """OSATE checks the bindings of threads: a process is bound with its threads, so their own
+    ``Allowed_Processor_Binding`` and ``Allowed_Processor_Binding_Class`` restrict it."""
+    problem = deployment_problem(instantiate(model, "targets::robot.threads"))
+    cores = [c.path.partition(".")[2] for c in problem.cores]
+    assert [[cores[k] for k in allowed] for allowed in problem.allowed] == [["c1"], ["c0"]]
+    assert [pin.reason for pin in problem.pins] == [
+        "Allowed_Processor_Binding of p.w",
+        "Allowed_Processor_Binding_Class of q.w",
+    ]
+    assert _binding(model, "targets::robot.threads") == {"p": "c1", "q": "c0"}
