@@ -26,6 +26,7 @@ from rosaadl.analysis.deployment_proposal import DeploymentProposal, propose_dep
 from rosaadl.analysis.instance_values import category_of
 from rosaadl.errors import Location, ModelError
 from rosaadl.fileio import atomic_write_bytes, cannot_write
+from rosaadl.model import component_instances
 
 __all__ = ["DeployRun", "check_proposed", "deploy_instance", "proposed_package_name"]
 
@@ -148,9 +149,11 @@ def deploy_instance(
         instance, time_limit=time_limit, keep=keep, granularity=granularity, deterministic=deterministic
     )
     if not proposal.problem.units:
+        idle = [p for p in component_instances(instance) if category_of(p) == "process"]
         raise ModelError(
             f"{instance.name} has no process to bind: no active process with threads or an "
-            "SEI::MIPSBudget in its first mode",
+            "SEI::MIPSBudget in its first mode"
+            + (f" ({len(idle)} processes without either are left as they are bound)" if idle else ""),
             Location(path=instance.name),
         )
     if not proposal.feasible:
