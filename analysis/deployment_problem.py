@@ -419,8 +419,14 @@ def _resolve(root: Any, items: Iterable[Any], what: str) -> list[Any]:
     return out
 
 
-def _has_threads(process: Any) -> bool:
-    return any(category_of(t) == "thread" for t in component_instances(process, include_root=False))
+def _has_demand(process: Any, analysis: ResourceDemand, mode: Any) -> bool:
+    """Whether a process is searched: it has threads, or a MIPS or RAM budget (a process
+    budgeted before its threads are modelled)."""
+    return (
+        any(category_of(t) == "thread" for t in component_instances(process, include_root=False))
+        or analysis.reader.mips_budget(process, mode) > 0
+        or analysis.memory_budget(process, "RAM", mode) > 0
+    )
 
 
 def deployment_problem(
@@ -435,11 +441,11 @@ def deployment_problem(
 ) -> DeploymentProblem:
     """The deployment problem of an instance (see the module). ``processes`` (instances or paths;
     default: every active process with threads, or without threads but with an
-    ``SEI::MIPSBudget``: a process budgeted before its threads are modelled) and ``processors``
-    (default: every active core) narrow it; ``allowed`` maps unit paths (with or without the
-    root's name) to the core paths it may take; ``execution_times`` gives process path → core
-    path → thread path → CET in seconds for units measured per core type (those run only on the
-    cores listed)."""
+    ``SEI::MIPSBudget`` or ``SEI::RAMBudget``: a process budgeted before its threads are
+    modelled) and ``processors`` (default: every active core) narrow it; ``allowed`` maps unit
+    paths (with or without the root's name) to the core paths it may take; ``execution_times``
+    gives process path → core path → thread path → CET in seconds for units measured per core
+    type (those run only on the cores listed)."""
     if granularity not in ("process", "thread"):
         raise ModelError(f"unknown granularity {granularity!r} (process, thread)")
     root = instance_root(source)
@@ -452,16 +458,14 @@ def deployment_problem(
         process_objs = [
             ci
             for ci in components
-            if category_of(ci) == "process"
-            and mode.active(ci)
-            and (_has_threads(ci) or reader.mips_budget(ci, mode) > 0)
+            if category_of(ci) == "process" and mode.active(ci) and _has_demand(ci, analysis, mode)
         ]
         asleep = [
             instance_path(ci)
             for ci in components
             if category_of(ci) in ("process", "processor")
             and not mode.active(ci)
-            and (category_of(ci) == "processor" or _has_threads(ci) or reader.mips_budget(ci, mode) > 0)
+            and (category_of(ci) == "processor" or _has_demand(ci, analysis, mode))
         ]
         if asleep:
             diagnostics.append(

@@ -151,8 +151,8 @@ def deploy_instance(
     if not proposal.problem.units:
         idle = [p for p in component_instances(instance) if category_of(p) == "process"]
         raise ModelError(
-            f"{instance.name} has no process to bind: no active process with threads or an "
-            "SEI::MIPSBudget in its first mode"
+            f"{instance.name} has no process to bind: no active process with threads, an "
+            "SEI::MIPSBudget or an SEI::RAMBudget in its first mode"
             + (f" ({len(idle)} processes without either are left as they are bound)" if idle else ""),
             Location(path=instance.name),
         )

@@ -36,6 +36,21 @@ public
   end budgeted;
   process empty
   end empty;
+  process stored
+  properties
+    SEI::RAMBudget => 80.0 KByte;
+  end stored;
+  memory ram
+  properties
+    Memory_Size => 100.0 KByte;
+  end ram;
+  system shelf
+  end shelf;
+  system implementation shelf.impl
+  subcomponents
+    cpu : processor cpu.impl;
+    mem : memory ram;
+  end shelf.impl;
   processor cpu
   properties
     Scheduling_Protocol => (RATE_MONOTONIC_PROTOCOL);
@@ -108,6 +123,13 @@ public
     Allowed_Processor_Binding => (reference (c1)) applies to p.w;
     Allowed_Processor_Binding_Class => (classifier (targets::other)) applies to q.w;
   end robot.threads;
+  system implementation robot.memory
+  subcomponents
+    left : system shelf.impl;
+    right : system shelf.impl;
+    m : process stored;
+    n : process stored;
+  end robot.memory;
   system implementation robot.budgets
   subcomponents
     c0 : processor cpu.impl;
@@ -182,3 +204,12 @@ def test_a_threads_restriction_holds_for_its_process(model):
         "Allowed_Processor_Binding_Class of q.w",
     ]
     assert _binding(model, "targets::robot.threads") == {"p": "c1", "q": "c0"}
+
+
+def test_a_process_with_only_a_ram_budget_takes_memory(model):
+    """A process without threads whose demand is an ``SEI::RAMBudget``: two of 80 KByte do not
+    fit one board of 100 KByte."""
+    problem = deployment_problem(instantiate(model, "targets::robot.memory"))
+    assert [(u.path.partition(".")[2], u.memory_kbyte) for u in problem.units] == [("m", 80), ("n", 80)]
+    binding = _binding(model, "targets::robot.memory")
+    assert sorted(binding.values()) == ["left.cpu", "right.cpu"]
