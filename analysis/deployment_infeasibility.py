@@ -75,18 +75,20 @@ def _single_unit(problem: DeploymentProblem) -> list[Infeasibility]:
             if any(p.device for p in pins):
                 held = " and ".join(
                     f"to {_short(problem, p.board)} by "
-                    + (f"device {_short(problem, p.device)}" if p.device else "Allowed_Processor_Binding")
+                    + (f"device {_short(problem, p.device)}" if p.device else p.by)
                     for p in pins
                 )
                 out.append(Infeasibility("pinned", f"{name} is pinned {held}: no core is both", unit.path))
                 continue
-            out.append(
-                Infeasibility(
-                    "candidates",
-                    f"{name} may run on no candidate core (Allowed_Processor_Binding or the cores given)",
-                    unit.path,
-                )
+            held = [f"{p.by} ({_short(problem, p.board)})" for p in pins]
+            why = (
+                f": {held[0]} names no candidate processor"
+                if len(held) == 1 and not pins[0].cores
+                else f": {' and '.join(held)} leave no core in common"
+                if held
+                else " (Allowed_Processor_Binding or the cores given)"
             )
+            out.append(Infeasibility("candidates", f"{name} may run on no candidate core{why}", unit.path))
             continue
         candidates = problem.candidates(u)
         if not candidates:

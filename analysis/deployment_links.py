@@ -72,10 +72,11 @@ class Pin:
     board: str
     device: str
     cores: tuple[int, ...]
+    by: str = "Allowed_Processor_Binding"  #: the property restricting it, when no device does
 
     @property
     def reason(self) -> str:
-        return f"device {self.device}" if self.device else "Allowed_Processor_Binding"
+        return f"device {self.device}" if self.device else self.by
 
 
 def unit_finder(root: Any, unit_objs: Sequence[Any]) -> Callable[[Any], list[int]]:

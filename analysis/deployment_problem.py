@@ -15,11 +15,16 @@ first system mode:
   :mod:`rosaadl.analysis.schedulability` (response-time analysis where the core has priorities)
   under the core's ``Scheduling_Protocol`` (preemptive rate monotonic when it has none).
 * **candidates**: ``Allowed_Processor_Binding`` of the unit (or of the process holding a thread),
-  a processor or system standing for the cores inside it, intersected with the caller's
+  a processor or system standing for the cores inside it and a virtual processor for the core it
+  runs on (then named by the binding, :meth:`DeploymentProblem.target`), and
+  ``Allowed_Processor_Binding_Class`` (cores whose classifier is or extends one listed, OSATE's
+  binding check), intersected with the caller's
   ``allowed`` and with the board of every device the unit is connected to (the **pins**,
   :func:`~rosaadl.analysis.deployment_links.device_pins`; the ``Allowed_Processor_Binding``
   restrictions are listed as pins too); the **current binding** from ``Actual_Processor_Binding``
-  (the moves objective).
+  (the moves objective; a process whose threads are bound, not itself, is where its threads are;
+  the threads bound otherwise than their unit are kept in ``bound_inside``, for the proposal to
+  restate).
 * **boards**: a core's board is its nearest enclosing system below the root, else its outermost
   enclosing processor, else the core itself. Units on different boards talk over the bus.
 * **memory**: a unit's RAM (Data + Heap + Stack size of its subtree, else ``SEI::RAMBudget``)
@@ -43,10 +48,30 @@ from typing import Any
 from rosaadl.analysis.busload import data_size_kbyte, message_rate
 from rosaadl.analysis.demand import ResourceDemand
 from rosaadl.analysis.deployment_links import ChainCost, Pin, chain_costs, device_pins
-from rosaadl.analysis.instance_values import PropertyReader, category_of, instance_root, system_modes
+from rosaadl.analysis.deployment_targets import (
+    bound_inside,
+    classes_up,
+    classifier_name,
+    covered_cores,
+    declared_up,
+    of_class,
+)
+from rosaadl.analysis.instance_values import (
+    ProcessorBindings,
+    PropertyReader,
+    category_of,
+    instance_root,
+    relative_path,
+    system_modes,
+)
 from rosaadl.analysis.tasks import Dispatch, Processor, Scheduler, Task, TaskSet
 from rosaadl.errors import Diagnostic, Location, ModelError
-from rosaadl.model import component_instances, find_instance, instance_path, walk
+from rosaadl.model import (
+    component_instances,
+    find_instance,
+    instance_path,
+    walk,
+)
 
 __all__ = [
     "CandidateCore",
@@ -134,6 +159,12 @@ class DeploymentProblem:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     chains: list[ChainCost] = field(default_factory=list)
     pins: list[Pin] = field(default_factory=list)
+    #: (unit, core) -> the virtual processor on that core the unit is bound to (its
+    #: ``Allowed_Processor_Binding`` names it); by default a unit is bound to the core itself
+    targets: dict[tuple[int, int], str] = field(default_factory=dict)
+    #: unit -> the paths of its threads bound otherwise than the unit (their own
+    #: ``Actual_Processor_Binding`` beats the one they inherit: a proposal must restate it)
+    bound_inside: dict[int, tuple[str, ...]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.times is None:
@@ -157,6 +188,11 @@ class DeploymentProblem:
     def candidates(self, unit: int) -> list[int]:
         """The cores ``unit`` may go to: allowed, and with a load there."""
         return [c for c in self.allowed[unit] if self.load[unit][c] is not None]
+
+    def target(self, unit: int, core: int) -> str:
+        """The path ``Actual_Processor_Binding`` names when ``unit`` runs on ``core``: the core, or
+        the virtual processor on it that the unit's ``Allowed_Processor_Binding`` names."""
+        return self.targets.get((unit, core), self.cores[core].path)
 
     def boards(self) -> list[str]:
         """The boards, in core order."""
@@ -369,12 +405,6 @@ def _board_of(core: Any, root: Any) -> Any:
     return outer_processor if outer_processor is not None else core
 
 
-def _kind(obj: Any) -> str:
-    classifier = getattr(obj, "classifier", None)
-    text = classifier if isinstance(classifier, str) else getattr(classifier, "name", None)
-    return str(text) if text else ""
-
-
 def _resolve(root: Any, items: Iterable[Any], what: str) -> list[Any]:
     out = []
     for item in items:
@@ -389,26 +419,14 @@ def _resolve(root: Any, items: Iterable[Any], what: str) -> list[Any]:
     return out
 
 
-def _covered(targets: Iterable[Any], index: dict[str, int]) -> set[int]:
-    """The candidate cores a list of binding targets stands for (a core, or the cores inside)."""
-    out: set[int] = set()
-    for target in targets:
-        path = instance_path(target)
-        if path in index:
-            out.add(index[path])
-        else:
-            out.update(i for p, i in index.items() if p.startswith(path + "."))
-    return out
-
-
-def _from_unit_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: Any) -> list[Any]:
-    """The targets of a binding property on ``obj``, else on its nearest container that has one."""
-    while obj is not None and obj is not root:
-        found = reader.targets(obj, name, mode)
-        if found:
-            return found
-        obj = obj.eContainer()
-    return []
+def _has_demand(process: Any, analysis: ResourceDemand, mode: Any) -> bool:
+    """Whether a process is searched: it has threads, or a MIPS or RAM budget (a process
+    budgeted before its threads are modelled)."""
+    return (
+        any(category_of(t) == "thread" for t in component_instances(process, include_root=False))
+        or analysis.reader.mips_budget(process, mode) > 0
+        or analysis.memory_budget(process, "RAM", mode) > 0
+    )
 
 
 def deployment_problem(
@@ -422,10 +440,12 @@ def deployment_problem(
     granularity: str = "process",
 ) -> DeploymentProblem:
     """The deployment problem of an instance (see the module). ``processes`` (instances or paths;
-    default: every active process with threads) and ``processors`` (default: every active core)
-    narrow it; ``allowed`` maps unit paths (with or without the root's name) to the core paths it
-    may take; ``execution_times`` gives process path → core path → thread path → CET in seconds
-    for units measured per core type (those run only on the cores listed)."""
+    default: every active process with threads, or without threads but with an
+    ``SEI::MIPSBudget`` or ``SEI::RAMBudget``: a process budgeted before its threads are
+    modelled) and ``processors`` (default: every active core) narrow it; ``allowed`` maps unit
+    paths (with or without the root's name) to the core paths it may take; ``execution_times``
+    gives process path → core path → thread path → CET in seconds for units measured per core
+    type (those run only on the cores listed)."""
     if granularity not in ("process", "thread"):
         raise ModelError(f"unknown granularity {granularity!r} (process, thread)")
     root = instance_root(source)
@@ -438,10 +458,26 @@ def deployment_problem(
         process_objs = [
             ci
             for ci in components
-            if category_of(ci) == "process"
-            and any(category_of(t) == "thread" for t in component_instances(ci, include_root=False))
-            and mode.active(ci)
+            if category_of(ci) == "process" and mode.active(ci) and _has_demand(ci, analysis, mode)
         ]
+        asleep = [
+            instance_path(ci)
+            for ci in components
+            if category_of(ci) in ("process", "processor")
+            and not mode.active(ci)
+            and (category_of(ci) == "processor" or _has_demand(ci, analysis, mode))
+        ]
+        if asleep:
+            diagnostics.append(
+                Diagnostic(
+                    "warning",
+                    f"the deployment is searched in the first system mode {mode.label or mode.name}: "
+                    f"{len(asleep)} processes and processors of other modes are left as they are "
+                    f"bound ({', '.join(p.partition('.')[2] for p in asleep[:5])}"
+                    f"{', ...' if len(asleep) > 5 else ''})",
+                    Location(path=asleep[0]),
+                )
+            )
     else:
         process_objs = _resolve(root, processes, "process")
     if processors is None:
@@ -483,7 +519,7 @@ def deployment_problem(
     units: list[Unit] = []
     for obj in process_objs:
         threads = [t for t in component_instances(obj, include_root=False) if category_of(t) == "thread"]
-        if granularity == "thread":
+        if granularity == "thread" and threads:
             for t in threads:
                 unit_objs.append(t)
                 units.append(Unit(instance_path(t), [thread_of(t)], reader.mips_budget(t, mode), memory(t)))
@@ -514,7 +550,7 @@ def deployment_problem(
                 scheduler,
                 preemptive,
                 instance_path(board),
-                _kind(obj) or _kind(obj.eContainer()),
+                classifier_name(obj) or classifier_name(obj.eContainer()),
             )
         )
     if schedulability and defaulted:
@@ -527,17 +563,46 @@ def deployment_problem(
             )
         )
     index = {c.path: i for i, c in enumerate(cores)}
+    bindings = ProcessorBindings(reader)
     allowed_lists = []
     current = []
+    targets: dict[tuple[int, int], str] = {}
+    restated: dict[int, tuple[str, ...]] = {}
     pins = device_pins(root, unit_objs, [c.path for c in cores], mode)
     for u, (unit, obj) in enumerate(zip(units, unit_objs, strict=True)):
         chosen = set(range(len(cores)))
-        declared = _from_unit_up(reader, obj, "Allowed_Processor_Binding", mode, root)
-        if declared:
-            covered = _covered(declared, index)
-            chosen &= covered
-            names = ", ".join(instance_path(t) for t in declared)
-            pins.append(Pin(u, names, "", tuple(sorted(covered))))
+        declared = declared_up(reader, obj, "Allowed_Processor_Binding", mode, root)
+        classes = classes_up(reader, obj, mode, root)
+        restrictions = [(declared, classes, "")]
+        # a thread's own restriction holds for the process it is bound with (OSATE checks threads)
+        for thread in component_instances(obj, include_root=False) if obj is not None else []:
+            if category_of(thread) != "thread":
+                continue
+            mine = reader.targets(thread, "Allowed_Processor_Binding", mode) or []
+            kinds = classes_up(reader, thread, mode, obj)
+            if [instance_path(t) for t in mine] != [instance_path(t) for t in declared] and mine:
+                restrictions.append((mine, [], f" of {relative_path(thread)}"))
+            if kinds and kinds != classes:
+                restrictions.append(([], kinds, f" of {relative_path(thread)}"))
+        for targets_, classes_, holder in restrictions:
+            if targets_:
+                covered = covered_cores(targets_, index, bindings, mode)
+                chosen &= set(covered)
+                for k, vp in covered.items():
+                    if vp is not None:
+                        targets.setdefault((u, k), vp)
+                names = ", ".join(instance_path(t) for t in targets_)
+                pins.append(Pin(u, names, "", tuple(sorted(covered)), f"Allowed_Processor_Binding{holder}"))
+            if classes_:
+                covered = covered_cores(of_class(root, classes_, mode), index, bindings, mode)
+                chosen &= set(covered)
+                for k, vp in covered.items():
+                    if vp is not None:
+                        targets.setdefault((u, k), vp)
+                names = ", ".join(str(c) for c in classes_)
+                pins.append(
+                    Pin(u, names, "", tuple(sorted(covered)), f"Allowed_Processor_Binding_Class{holder}")
+                )
         for pin in pins:
             if pin.unit == u and pin.device:
                 chosen &= set(pin.cores)
@@ -553,9 +618,20 @@ def deployment_problem(
                 given.add(index[key])
             chosen &= given
         allowed_lists.append(sorted(chosen))
-        current.append(
-            frozenset(_covered(_from_unit_up(reader, obj, "Actual_Processor_Binding", mode, root), index))
-        )
+        own = declared_up(reader, obj, "Actual_Processor_Binding", mode, root)
+        actual = covered_cores(own, index, bindings, mode)
+        inside = bound_inside(reader, obj, own, mode)
+        if inside:
+            restated[u] = tuple(instance_path(t) for t, _targets in inside)
+            if not actual:  # the threads are bound, not the process: where they are now
+                for _t, found in inside:
+                    for k, vp in covered_cores(found, index, bindings, mode).items():
+                        actual.setdefault(k, vp)
+        current.append(frozenset(actual))
+        if not declared:  # a unit that stays on its core keeps its partition there
+            for k, vp in actual.items():
+                if vp is not None:
+                    targets.setdefault((u, k), vp)
     times = None
     if execution_times:
         if granularity != "process":
@@ -588,9 +664,11 @@ def deployment_problem(
         diagnostics,
         chain_costs(root, unit_objs, mode),
         sorted(pins, key=lambda p: (p.unit, p.device, p.board)),
+        {key: vp for key, vp in targets.items() if key[1] in allowed_lists[key[0]]},
+        restated,
     )
     for u, unit in enumerate(units):
-        if all(problem.load[u][c] is None for c in allowed_lists[u]):
+        if allowed_lists[u] and all(problem.load[u][c] is None for c in allowed_lists[u]):
             diagnostics.append(
                 Diagnostic(
                     "error",

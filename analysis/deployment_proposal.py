@@ -49,10 +49,11 @@ class DeploymentProposal:
         return self.outcome.feasible
 
     def binding(self, index: int = 0) -> list[tuple[str, str]]:
-        """(unit path, core path) of the ``index``-th best binding."""
+        """(unit path, binding target) of the ``index``-th best binding: the core, or the virtual
+        processor on it that the unit's ``Allowed_Processor_Binding`` names."""
         chosen = self.outcome.bindings[index]
         p = self.problem
-        return [(p.units[u].path, p.cores[c].path) for u, c in enumerate(chosen.assignment)]
+        return [(p.units[u].path, p.target(u, c)) for u, c in enumerate(chosen.assignment)]
 
     def pins(self) -> list[dict[str, str]]:
         """The units held to some cores: ``{"path", "to", "by"}``, ``by`` a device or
@@ -163,8 +164,8 @@ class DeploymentProposal:
                 moved.append(
                     [
                         _short(p, p.units[u].path),
-                        ", ".join(_short(p, p.cores[k].path) for k in now) or "-",
-                        _short(p, p.cores[c].path),
+                        ", ".join(_short(p, p.target(u, k)) for k in now) or "-",
+                        _short(p, p.target(u, c)),
                     ]
                 )
         lines += table(["unit", "current", "proposed"], moved)

@@ -89,6 +89,12 @@ def command(
         deterministic=deterministic,
     )
     proposal = run.proposal
+    # what the problem could not read (a thread without Period, a MIPS demand without capacity)
+    # counts as no load: said as warnings beside the proposal, which stands
+    report.note(
+        Diagnostic("warning", d.message, d.location) if d.severity == "error" else d
+        for d in proposal.problem.diagnostics
+    )
     for line in proposal.text():
         report.say(line)
     if run.output is not None:

@@ -23,8 +23,10 @@ from pyecore.ecore import EObject
 
 from rosaadl import model as _model
 from rosaadl.analysis.deployment_proposal import DeploymentProposal, propose_deployment
-from rosaadl.errors import ModelError
+from rosaadl.analysis.instance_values import category_of
+from rosaadl.errors import Location, ModelError
 from rosaadl.fileio import atomic_write_bytes, cannot_write
+from rosaadl.model import component_instances
 
 __all__ = ["DeployRun", "check_proposed", "deploy_instance", "proposed_package_name"]
 
@@ -80,22 +82,35 @@ def _proposed_text(proposal: DeploymentProposal, implementation: EObject, name: 
     from rosaadl.exporters.aadl_text import unit_file_name, write_unit
 
     package = implementation.eContainer()
-    root = proposal.problem.root + "."
-    pairs = [(u.removeprefix(root), c.removeprefix(root)) for u, c in proposal.binding()]
-    units = {u.lower() for u, _c in pairs}
+    problem = proposal.problem
+    root = problem.root + "."
+    pairs = []
+    for u, (unit, core) in enumerate(proposal.binding()):
+        pairs.append((unit.removeprefix(root), core.removeprefix(root)))
+        # a thread bound otherwise than its process keeps its own binding unless restated
+        pairs += [(t.removeprefix(root), core.removeprefix(root)) for t in problem.bound_inside.get(u, ())]
+    units = [u.lower() for u, _c in pairs]
+
+    def rebound(path: object) -> bool:
+        text = str(path).lower()
+        return any(text == u or text.startswith(u + ".") for u in units)
+
     owned = implementation.ownedPropertyAssociations
     kept = list(owned)
-    replaced = [
-        a
-        for a in kept
-        if (a.property or "").rpartition("::")[2].lower() == _BINDING.lower()
-        and any(str(p).lower() in units for p in a.appliesTo)
-    ]
+    applied = {id(a): list(a.appliesTo) for a in kept}
+    bindings = [a for a in kept if (a.property or "").rpartition("::")[2].lower() == _BINDING.lower()]
     added = [_association(c, u) for u, c in pairs]
     old_name = package.name
     try:
-        for a in replaced:
-            owned.remove(a)
+        # the root's associations for what is bound anew go; one that also applies to other
+        # elements stays for those
+        for a in bindings:
+            left = [p for p in a.appliesTo if not rebound(p)]
+            if not left:
+                owned.remove(a)
+            elif len(left) < len(a.appliesTo):
+                a.appliesTo.clear()
+                a.appliesTo.extend(left)
         owned.extend(added)
         package.name = name
         return unit_file_name(package), write_unit(package)
@@ -105,6 +120,10 @@ def _proposed_text(proposal: DeploymentProposal, implementation: EObject, name: 
             owned.remove(a)
         owned.clear()
         owned.extend(kept)
+        for a in bindings:
+            if list(a.appliesTo) != applied[id(a)]:
+                a.appliesTo.clear()
+                a.appliesTo.extend(applied[id(a)])
 
 
 def deploy_instance(
@@ -119,9 +138,24 @@ def deploy_instance(
     """Solve the deployment of ``instance`` (its model must hold the declarative units it was
     instantiated from) and write the best binding as ``<package>_proposed.aadl`` in ``folder``."""
     model = instance.eContainer()
+    category = category_of(instance) or "system"
+    if category != "system":
+        raise ModelError(
+            f"the root {instance.classifier or instance.name} is a {category}, not a system: "
+            "deploy binds the processes of a system implementation to its processors",
+            Location(path=instance.name),
+        )
     proposal = propose_deployment(
         instance, time_limit=time_limit, keep=keep, granularity=granularity, deterministic=deterministic
     )
+    if not proposal.problem.units:
+        idle = [p for p in component_instances(instance) if category_of(p) == "process"]
+        raise ModelError(
+            f"{instance.name} has no process to bind: no active process with threads, an "
+            "SEI::MIPSBudget or an SEI::RAMBudget in its first mode"
+            + (f" ({len(idle)} processes without either are left as they are bound)" if idle else ""),
+            Location(path=instance.name),
+        )
     if not proposal.feasible:
         return DeployRun(proposal, None, None, None)
     implementation = _root_implementation(instance, model)

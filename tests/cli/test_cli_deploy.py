@@ -5,6 +5,7 @@ the JSON of the issue, infeasible models explained with exit 1, and the demo's f
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -183,3 +184,188 @@ def test_the_demos_failing_deployment_gets_a_binding_that_passes(tmp_path, capsy
     left = {d.message for d in report.diagnostics if d.severity == "error"}
     assert left and left <= {d.message for d in before.diagnostics if d.severity == "error"}
     assert all("SEI::MIPSBudget" in message for message in left)
+
+
+HOSTILE = """package hostile
+public
+  thread sampled
+  properties
+    Dispatch_Protocol => Periodic;
+    Compute_Execution_Time => 1 ms .. 2 ms;
+  end sampled;
+  process node
+  end node;
+  process implementation node.sampled
+  subcomponents
+    t : thread sampled;
+  end node.sampled;
+  processor cpu
+  end cpu;
+  processor implementation cpu.impl
+  end cpu.impl;
+  virtual processor part
+  end part;
+  system robot
+  end robot;
+  system implementation robot.shells
+  subcomponents
+    c0 : processor cpu;
+    a : process node;
+    b : process node;
+  end robot.shells;
+  system implementation robot.unperiodic
+  subcomponents
+    c0 : processor cpu;
+    a : process node.sampled;
+  end robot.unperiodic;
+  system implementation robot.modal
+  subcomponents
+    c0 : processor cpu;
+    c1 : processor cpu in modes (full);
+    a : process node.sampled;
+    b : process node.sampled in modes (full);
+  modes
+    safe : initial mode;
+    full : mode;
+  end robot.modal;
+  system implementation robot.nowhere
+  subcomponents
+    c0 : processor cpu;
+    loose : virtual processor part;
+    a : process node.sampled;
+  properties
+    Allowed_Processor_Binding => (reference (loose)) applies to a;
+  end robot.nowhere;
+end hostile;
+"""
+
+
+def deploy(model: Path, root: str, out: Path, *options: str) -> list[str]:
+    return [*options, "deploy", str(model), "--root", root, "-o", str(out)]
+
+
+@pytest.mark.parametrize(
+    ("root", "message"),
+    [
+        ("hostile::cpu.impl", "is a processor, not a system"),
+        ("hostile::node.sampled", "is a process, not a system"),
+        ("hostile::robot.shells", "has no process to bind"),
+    ],
+)
+def test_what_cannot_be_deployed_is_a_located_error_and_writes_nothing(tmp_path, capsys, root, message):
+    model = tmp_path / "hostile.aadl"
+    model.write_text(HOSTILE)
+    out = tmp_path / "out"
+    code, _stdout, err = run(deploy(model, root, out), capsys)
+    assert code == 1 and message in err and "Traceback" not in err
+    assert re.search(r"error: \w+_Instance: ", err)  # located at the instance
+    assert not out.exists()
+
+
+def test_what_the_problem_cannot_read_is_warned_beside_the_proposal(tmp_path, capsys):
+    model = tmp_path / "hostile.aadl"
+    model.write_text(HOSTILE)
+    json_out = ("--format", "json")
+    code, stdout, err = run(deploy(model, "hostile::robot.unperiodic", tmp_path, *json_out), capsys)
+    assert code == 0, err
+    data = json.loads(stdout)
+    assert any("has no Period" in w["message"] and w["path"].endswith("a.t") for w in data["warnings"])
+    # what exists only in other modes is left as it is, and said
+    code, stdout, err = run(deploy(model, "hostile::robot.modal", tmp_path, *json_out), capsys)
+    assert code == 0, err
+    data = json.loads(stdout)
+    assert [b["path"] for b in data["binding"]] == ["robot_modal_Instance.a"]
+    assert any(
+        "first system mode (safe)" in w["message"] and "(b, c1)" in w["message"] for w in data["warnings"]
+    )
+    # a virtual processor bound nowhere leaves its unit no core, and the reason says which
+    code, _stdout, err = run(deploy(model, "hostile::robot.nowhere", tmp_path), capsys)
+    assert code == 1 and "Allowed_Processor_Binding (loose) names no candidate processor" in err
+    assert "demands MIPS" not in err  # no core to take is not a core without MIPS
+
+
+THREADS_BOUND = """package threads_bound
+public
+  thread worker
+  properties
+    Dispatch_Protocol => Periodic;
+    Period => 10 ms;
+    Compute_Execution_Time => 4 ms .. 4 ms;
+  end worker;
+  process node
+  end node;
+  process implementation node.impl
+  subcomponents
+    t1 : thread worker;
+    t2 : thread worker;
+  end node.impl;
+  processor cpu
+  properties
+    Scheduling_Protocol => (RATE_MONOTONIC_PROTOCOL);
+  end cpu;
+  virtual processor part
+  end part;
+  processor implementation cpu.partitioned
+  subcomponents
+    part1 : virtual processor part;
+    part2 : virtual processor part;
+  end cpu.partitioned;
+  system robot
+  end robot;
+  system implementation robot.threads
+  subcomponents
+    c0 : processor cpu;
+    c1 : processor cpu;
+    a : process node.impl;
+    b : process node.impl;
+    spare : virtual processor part;
+  properties
+    Actual_Processor_Binding => (reference (c0)) applies to a.t1, a.t2, b.t1, b.t2, spare;
+  end robot.threads;
+  system implementation robot.partitions
+  subcomponents
+    m0 : processor cpu.partitioned;
+    m1 : processor cpu.partitioned;
+    a : process node.impl;
+    b : process node.impl;
+  properties
+    Actual_Processor_Binding => (reference (m0.part1)) applies to a;
+    Actual_Processor_Binding => (reference (m0.part2)) applies to b;
+  end robot.partitions;
+end threads_bound;
+"""
+
+
+def test_the_proposal_holds_where_the_model_binds_threads_and_partitions(tmp_path):
+    """A model binding the threads (not the process) has them where they are as the current
+    binding, and the proposal restates the threads' bindings (a thread's own binding beats
+    the one it inherits); a root association that also binds something else keeps that; a
+    unit bound to a partition that stays on its processor keeps the partition."""
+    from rosaadl.analysis.instance_values import bound_processor
+    from rosaadl.model import component_instances
+
+    path = tmp_path / "threads_bound.aadl"
+    path.write_text(THREADS_BOUND)
+    model = read_files([path])
+    run_ = deploy_instance(
+        instantiate(model, "threads_bound::robot.threads"), tmp_path / "t", deterministic=True
+    )
+    problem = run_.proposal.problem
+    assert [len(c) for c in problem.current] == [1, 1]  # on c0, through their threads
+    assert run_.proposal.outcome.best is not None
+    proposed = dict(run_.proposal.binding())
+    assert len(set(proposed.values())) == 2  # 80 % each: one moves
+    assert run_.output is not None and run_.root is not None
+    instance = instantiate(read_files([path, run_.output]), run_.root)
+    for ci in component_instances(instance):
+        if ci.name in ("t1", "t2"):
+            unit = f"{problem.root}.{ci.eContainer().name}"
+            assert bound_processor(ci).name == proposed[unit].rpartition(".")[2]
+        if ci.name == "spare":
+            assert bound_processor(ci).name == "c0"
+    run_ = deploy_instance(
+        instantiate(model, "threads_bound::robot.partitions"), tmp_path / "p", deterministic=True
+    )
+    binding = {u.rpartition(".")[2]: c.partition(".")[2] for u, c in run_.proposal.binding()}
+    stays = [u for u, c in binding.items() if c.startswith("m0")]
+    assert len(stays) == 1 and binding[stays[0]] == {"a": "m0.part1", "b": "m0.part2"}[stays[0]]
