@@ -492,7 +492,12 @@ class FlowWalk:
                 rows.append(sub)
             row.subs = []
         if dst_part is not None and src_part is not dst_part:
-            rows.append(self.partition_row(dst_part, conn, start=False))
+            entered = self.partition_row(dst_part, conn, start=False)
+            if entered.partition_duration > 0 and not entered.period and not self.legacy:
+                # a window without a major frame or period repeats after its own duration
+                entered.period = entered.partition_duration
+                entered.comment("No partition period. Using partition duration")
+            rows.append(entered)
 
     def _reference_time(self, hardware: Any) -> Any | None:
         targets = self.reader.targets(hardware, "Timing_Properties::Reference_Time", self.mode)

@@ -124,7 +124,7 @@ def summary(
     return issues
 
 
-def _hops(rows: list[Contributor], revision: str) -> tuple[LatencyHop, ...]:
+def _hops(rows: list[Contributor], revision: str, major_frame: bool = True) -> tuple[LatencyHop, ...]:
     hops: list[LatencyHop] = []
 
     def add(row: Contributor, depth: int) -> None:
@@ -138,8 +138,8 @@ def _hops(rows: list[Contributor], revision: str) -> tuple[LatencyHop, ...]:
                 row.shown(True),
                 "; ".join(row.comments),
                 row.label,
-                method_word(row.best_method, revision),
-                method_word(row.worst_method, revision),
+                method_word(row.best_method, revision, major_frame),
+                method_word(row.worst_method, revision, major_frame),
                 depth,
                 row.specified_best,
                 row.specified_worst,
@@ -360,7 +360,7 @@ def _entry(
     chain = LatencyChain(
         name,
         _threads(elements),
-        _hops(rows, prefs.revision),
+        _hops(rows, prefs.revision, prefs.major_frame),
         best,
         worst,
         expected_worst or None,

@@ -64,8 +64,11 @@ class Transmission:
         return value * _US if value is not None and value > 0 else Fraction(0)
 
     def bindings(self, obj: Any) -> list[Any]:
+        """The components ``obj`` is bound to: buses and virtual buses, and any other hardware
+        (a processor, memory or device carrying the messages) as OSATE takes every target of
+        ``Actual_Connection_Binding``."""
         bound = self.reader.targets(obj, "Deployment_Properties::Actual_Connection_Binding", self.mode) or []
-        return [b for b in bound if category_of(b) in ("bus", "virtualBus")]
+        return [b for b in bound if hasattr(b, "componentInstances")]
 
     def add_to(self, conn: Any, row: Contributor) -> None:
         """Add the sampling and transmission rows of ``conn``'s buses under ``row``."""
@@ -128,9 +131,17 @@ class Transmission:
                 return time, time, "SEI::BandWidthCapacity"
         return Fraction(0), Fraction(0), ""
 
+    def _raw_us(self, obj: Any, name: str, part: str = "max") -> Fraction:
+        """A time in µs as written, negative values kept (OSATE tests them against 0 only)."""
+        value = self.reader.seconds(obj, name, self.mode, part=part)
+        return value * _US if value is not None else Fraction(0)
+
     def _time(self, bus: Any, size: Fraction, row: Contributor, conn: Any) -> None:
-        latency_best = self.us(bus, "Communication_Properties::Latency", "min")
-        latency_worst = self.us(bus, "Communication_Properties::Latency")
+        """The transmission row of ``bus`` (``processTransmissionTime``): none when neither its
+        ``Latency`` nor its transfer time is set; a negative value gives a row of 0 by an
+        unknown method (*no sampling/queuing latency*)."""
+        latency_best = self._raw_us(bus, "Communication_Properties::Latency", "min")
+        latency_worst = self._raw_us(bus, "Communication_Properties::Latency")
         low, high, how = self.transfer(bus, size)
         if latency_worst == 0 and high == 0:
             return
@@ -145,10 +156,11 @@ class Transmission:
             )
             if size == 0:
                 sub.comment("Data size = 0. Possibly data type on port missing")
-        else:
+        elif latency_worst > 0:
             sub.worst, sub.worst_method = latency_worst, "specified"
             sub.comment("Using specified bus latency")
-        self.max_times[(id(bus), id(conn))] = sub.worst
+        if sub.worst_method != "unknown":
+            self.max_times[(id(bus), id(conn))] = sub.worst
         if low > 0:
             sub.best, sub.best_method = low, "transmission"
         elif latency_best > 0:
