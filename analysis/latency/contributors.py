@@ -42,6 +42,7 @@ from fractions import Fraction
 from typing import Any
 
 from rosaadl.analysis.instance_values import PropertyReader, SystemMode, category_of
+from rosaadl.analysis.latency.assigned import AssignedValues
 from rosaadl.analysis.latency.model import Contributor
 from rosaadl.analysis.latency.transmission import Transmission
 from rosaadl.model import instance_path
@@ -107,8 +108,10 @@ class FlowWalk:
         preferences: Any,
         transmission: Transmission,
         response_times: dict[str, Fraction] | None = None,
+        assigned: AssignedValues | None = None,
     ) -> None:
         self.reader = reader
+        self.assigned_values = assigned
         self.mode = mode
         self.prefs = preferences
         self.legacy = preferences.revision.startswith("2014")
@@ -122,6 +125,13 @@ class FlowWalk:
 
     def assigned(self, obj: Any, name: str) -> bool:
         return obj is not None and self.reader.value(obj, name, self.mode) is not None
+
+    def declared(self, obj: Any, name: str) -> bool | None:
+        """Whether an association of ``name`` reaches ``obj`` (OSATE's "assigned": the default
+        value does not count); None when the instance has no declarative model to tell."""
+        if self.assigned_values is None:
+            return None
+        return self.assigned_values.declared(obj, name)
 
     def dispatch(self, component: Any) -> str:
         return (self.reader.enum(component, "Thread_Properties::Dispatch_Protocol", self.mode) or "").lower()
@@ -260,7 +270,9 @@ class FlowWalk:
             if category_of(component) in _DEADLINE_CATEGORIES
             else Fraction(0)
         )
-        deadline_assigned = deadline > 0
+        # OSATE's isAssignedDeadline: a Deadline defaulted to the Period is not assigned
+        declared = self.declared(component, "Timing_Properties::Deadline") if deadline > 0 else False
+        deadline_assigned = deadline > 0 and declared is not False
         periodic = self.is_periodic(component)
         if period <= 0 and self.dispatch(component) == "periodic":
             self.reader.report("error", "periodic thread has no Period; it is not sampled", component)
@@ -350,6 +362,10 @@ class FlowWalk:
             worst, worst_method = deadline, "deadline"
         if not worst and spec_worst:
             worst, worst_method = spec_worst, "specified"
+        elif not worst and deadline and not self.legacy:
+            # neither execution time nor flow latency: the deadline, defaulted to the period
+            worst, worst_method = deadline, "deadline"
+            processing.comment("Using deadline as execution time was not set")
         best, best_method = Fraction(0), "unknown"
         if response_best:
             best, best_method = response_best, "response"
@@ -407,10 +423,17 @@ class FlowWalk:
         category = str(getattr(getattr(incoming, "category", None), "name", ""))
         dispatch = self.dispatch(component)
         queue_size = self.reader.number(incoming, "Communication_Properties::Queue_Size", None, self.mode)
-        if queue_size is not None and queue_size != 1:
-            # OSATE counts an assigned Queue_Size only; our instances keep default values, so the
-            # predeclared default (1) reads as unassigned
-            size = queue_size
+        declared = (
+            self.declared(incoming, "Communication_Properties::Queue_Size")
+            if queue_size is not None
+            else False
+        )
+        if declared is None:
+            # no declarative model to tell: the predeclared default (1) reads as unassigned
+            declared = queue_size != 1
+        if declared:
+            # OSATE counts an assigned Queue_Size only (0 included: no queue, whatever the port)
+            size = queue_size or Fraction(0)
         elif (
             category == "dataPort"
             and category_of(component) in ("thread", "device", "abstract")

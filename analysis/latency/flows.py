@@ -23,6 +23,7 @@ from rosaadl.analysis.instance_values import (
     instance_root,
     system_modes,
 )
+from rosaadl.analysis.latency.assigned import AssignedValues
 from rosaadl.analysis.latency.chains import chain_elements, refine_by_threads, thread_chains
 from rosaadl.analysis.latency.contributors import FlowWalk, flatten_flow, is_connection
 from rosaadl.analysis.latency.model import (
@@ -296,10 +297,11 @@ def analyze_latency(
     response_times = thread_response_times(root, schedulability) if derived and specs else {}
     results: list[LatencyChain] = []
     soms = system_modes(root)
+    assigned = AssignedValues(root)
     for som in soms:
         for mode_name, synchronous in _MODES:
             transmission = Transmission(reader, som)
-            walk = FlowWalk(reader, som, prefs, transmission, response_times)
+            walk = FlowWalk(reader, som, prefs, transmission, response_times, assigned)
             entries = []
             for name, flow, elements in specs:
                 if flow is not None and not som.active(flow):

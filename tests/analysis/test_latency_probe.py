@@ -5,15 +5,39 @@ totals OSATE's ``FlowLatencyAnalysisSwitch`` gives (the rule is named in each te
 
 from __future__ import annotations
 
+import pytest
+
 from rosaadl.analysis.latency import LatencyPreferences, analyze_latency
-from rosaadl.importers.aadl_text import read_string
+from rosaadl.importers.aadl_text import read_files
+from rosaadl.importers.aadl_text.reading import library_files
 from rosaadl.transforms.instantiate import instantiate
 
 _DL = LatencyPreferences(worst_case_deadline=True)
+#: the predeclared property sets (their default values matter here), without the rest of the library
+_PREDECLARED = {
+    "AADL_Project",
+    "Communication_Properties",
+    "Deployment_Properties",
+    "Memory_Properties",
+    "Modeling_Properties",
+    "Programming_Properties",
+    "Thread_Properties",
+    "Timing_Properties",
+}
 
 
-def _flow(text: str, root: str, name: str, preferences: LatencyPreferences = _DL, mode: str = "async"):
-    system = instantiate(read_string(text, root.partition("::")[0] + ".aadl"), root)
+@pytest.fixture(scope="module")
+def workspace(tmp_path_factory):
+    """Every model of this module, read once with the predeclared property sets."""
+    folder = tmp_path_factory.mktemp("latency_probe")
+    for name, text in _models().items():
+        (folder / f"{name}.aadl").write_text(text, encoding="utf-8")
+    files = sorted(folder.glob("*.aadl")) + [f for f in library_files() if f.stem in _PREDECLARED]
+    return read_files(files, include_library=False)
+
+
+def _flow(workspace, root: str, name: str, preferences: LatencyPreferences = _DL, mode: str = "async"):
+    system = instantiate(workspace, root)
     return analyze_latency(system, preferences=preferences).chain(name, mode)
 
 
@@ -50,12 +74,12 @@ end Carried;
 """
 
 
-def test_connection_bound_to_a_processor_adds_its_latency():
+def test_connection_bound_to_a_processor_adds_its_latency(workspace):
     """``processActualConnectionBindingsTransmission`` takes every target of
     ``Actual_Connection_Binding``, not only buses: a processor carrying the message adds its
     ``Latency`` (*specified*), then waits (*queued*) and samples (*sampling protocol/bus*) as an
     aperiodic bus does."""
-    chain = _flow(_CARRIED_BY_CPU, "Carried::top.i", "path")
+    chain = _flow(workspace, "Carried::top.i", "path")
     assert _rows(chain)[1:4] == [
         (1, "transmission", 4000, 6000, "specified", "specified"),
         (1, "queuing", 0, 0, "queued", "queued"),
@@ -94,10 +118,10 @@ end Backwards;
 """
 
 
-def test_negative_transmission_time_gives_an_unknown_row():
+def test_negative_transmission_time_gives_an_unknown_row(workspace):
     """``processTransmissionTime``: a bus whose transfer time is not 0 gets a row; a negative one
     adds nothing and its method is unknown (*no sampling/queuing latency*), not *specified*."""
-    chain = _flow(_NEGATIVE_BUS, "Backwards::top.i", "path")
+    chain = _flow(workspace, "Backwards::top.i", "path")
     bus = next(h for h in chain.hops if h.kind == "transmission")
     unknown = "no sampling/queuing latency"
     assert (bus.best_us, bus.worst_us, bus.best_method, bus.worst_method) == (0, 0, unknown, unknown)
@@ -133,12 +157,106 @@ end Window;
 """
 
 
-def test_partition_without_period_repeats_after_its_duration():
+def test_partition_without_period_repeats_after_its_duration(workspace):
     """``mapConnectionInstance``: a partition the flow enters, with a window duration but neither
     a major frame nor a period, samples at its duration ("No partition period. Using partition
     duration"): the worst case waits a whole window."""
-    chain = _flow(_WINDOW_ONLY, "Window::top.i", "path")
+    chain = _flow(workspace, "Window::top.i", "path")
     entered = next(h for h in chain.hops if h.kind == "partition")
     assert (entered.best_us, entered.worst_us, entered.worst_method) == (0, 8000, "partition offset")
     assert "No partition period. Using partition duration" in entered.note
     assert (chain.best_us, chain.worst_us) == (2000, 13000)
+
+
+_DEFAULTED = """
+package Defaulted
+public
+  thread sensor
+    features o: out data port;
+    flows src: flow source o;
+    properties Period => 10 ms;
+  end sensor;
+  thread filter
+    features i: in data port; o: out data port;
+    flows through: flow path i -> o;
+    properties Period => 20 ms; Compute_Execution_Time => 2 ms .. 4 ms;
+  end filter;
+  thread actuator
+    features i: in data port;
+    flows snk: flow sink i;
+    properties Period => 20 ms; Deadline => 20 ms; Compute_Execution_Time => 1 ms .. 3 ms;
+  end actuator;
+  process loop
+  end loop;
+  process implementation loop.i
+    subcomponents
+      s: thread sensor;
+      f: thread filter;
+      a: thread actuator;
+    connections
+      c1: port s.o -> f.i;
+      c2: port f.o -> a.i;
+    flows
+      path: end to end flow s.src -> c1 -> f.through -> c2 -> a.snk;
+  end loop.i;
+  abstract mailbox
+    features i: in event port {Queue_Size => 1;};
+    flows snk: flow sink i {Latency => 1 ms .. 2 ms;};
+    properties Dispatch_Protocol => Sporadic; Period => 10 ms;
+  end mailbox;
+  abstract poster
+    features o: out event port;
+    flows src: flow source o {Latency => 1 ms .. 1 ms;};
+  end poster;
+  system top
+  end top;
+  system implementation top.i
+    subcomponents
+      p: abstract poster;
+      m: abstract mailbox;
+    connections
+      c: port p.o -> m.i;
+    flows
+      post: end to end flow p.src -> c -> m.snk;
+  end top.i;
+end Defaulted;
+"""
+
+
+def test_deadline_defaulted_to_the_period_is_not_assigned(workspace):
+    """``isAssignedDeadline``: under ``DL`` only a ``Deadline`` an association gives replaces the
+    execution time; the default (the period) does not (the filter takes its 4 ms execution
+    time, "Using execution time as deadline was not set"), an explicit one equal to the period
+    does (the actuator's 20 ms), and with neither execution time nor flow latency the default
+    deadline is the worst case (the sensor's 10 ms)."""
+    chain = _flow(workspace, "Defaulted::loop.i", "path")
+    processing = [(h.label, h.worst_us, h.worst_method) for h in chain.hops if h.kind == "processing"]
+    assert processing == [
+        ("thread s", 10000, "deadline"),
+        ("thread f", 4000, "processing time"),
+        ("thread a", 20000, "deadline"),
+    ]
+    assert (chain.best_us, chain.worst_us) == (3000, 64000)
+    with_et = _flow(workspace, "Defaulted::loop.i", "path", LatencyPreferences())
+    assert [h.worst_us for h in with_et.hops if h.kind == "processing"] == [10000, 4000, 3000]
+
+
+def test_queue_size_of_one_assigned_is_a_queue(workspace):
+    """``hasAssignedPropertyValue(Queue_Size)``: an event port given ``Queue_Size => 1`` queues
+    one message of a sporadic receiver: ``1 × Period`` at worst, 0 with an empty queue (``EQ``),
+    the period with a full one (``FQ``)."""
+    chain = _flow(workspace, "Defaulted::top.i", "post")
+    (queued,) = [h for h in chain.hops if h.kind == "queuing"]
+    assert (queued.best_us, queued.worst_us, queued.worst_method) == (0, 10000, "queued")
+    assert (chain.best_us, chain.worst_us) == (2000, 13000)
+    full = _flow(workspace, "Defaulted::top.i", "post", LatencyPreferences(best_case_empty_queue=False))
+    assert (full.best_us, full.worst_us) == (12000, 13000)
+
+
+def _models() -> dict[str, str]:
+    return {
+        "Carried": _CARRIED_BY_CPU,
+        "Backwards": _NEGATIVE_BUS,
+        "Window": _WINDOW_ONLY,
+        "Defaulted": _DEFAULTED,
+    }

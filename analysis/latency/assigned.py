@@ -1,0 +1,121 @@
+"""Whether a property is *assigned* to an instance object, as OSATE's flow latency analysis asks.
+
+OSATE takes an assigned ``Deadline`` as the worst case under its ``DL`` preference, and an
+assigned ``Queue_Size`` as a queue (``FlowLatencyAnalysisSwitch.isAssignedDeadline`` and
+``hasAssignedPropertyValue``: a property association reaches the object; the default value does
+not count). rosaadl's instances carry every value, default values included (a ``Deadline``
+equal to the ``Period``, a ``Queue_Size`` of 1), so the question goes back to the declarative
+model the instance was made from: the AADL lookup order (contained associations, the
+subcomponent, the classifiers, ``inherit``) without the default value. An instance without its
+declarative model (read from an ``.aaxl2`` file, or built by hand) carries assigned values only:
+there a value is assigned when it is present.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from rosaadl import model as _model
+from rosaadl.errors import RosaadlError
+
+__all__ = ["AssignedValues"]
+
+log = logging.getLogger(__name__)
+
+
+def _by_name(elements: Any, name: str | None) -> Any | None:
+    wanted = (name or "").lower()
+    return next((e for e in elements if (e.name or "").lower() == wanted), None)
+
+
+class AssignedValues:
+    """Answers "is property ``name`` assigned to this component or feature instance?" for one
+    instance, from its declarative model when the instance has one at hand."""
+
+    def __init__(self, root: Any) -> None:
+        self.root = root
+        self._lookup: Any = None
+        self._tried = False
+        self._nodes: dict[int, Any] = {}
+        self._answers: dict[tuple[int, str], bool | None] = {}
+
+    def lookup(self) -> Any | None:
+        """The property lookup of the declarative model holding the instance (None without one)."""
+        if not self._tried:
+            self._tried = True
+            holder = _model.root_of(self.root)
+            if getattr(holder, "units", None):
+                from rosaadl.lookup import PropertyLookup
+                from rosaadl.resolution import Resolver
+
+                try:
+                    self._lookup = PropertyLookup(holder, Resolver(holder))
+                except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
+                    log.debug("no declarative model for assigned values: %s", exc)
+        return self._lookup
+
+    def declared(self, obj: Any, name: str) -> bool | None:
+        """Whether an association of ``name`` reaches ``obj`` in the declarative model (None when
+        the declarative model cannot tell)."""
+        marker = (id(obj), name.lower())
+        if marker in self._answers:
+            return self._answers[marker]
+        answer = None
+        lookup = self.lookup()
+        if lookup is not None:
+            try:
+                answer = self._declared(lookup, obj, lookup.property_key(name))
+            except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
+                log.debug("assigned %s of %s not resolved: %s", name, _model.instance_path(obj), exc)
+        self._answers[marker] = answer
+        return answer
+
+    def _node(self, lookup: Any, ci: Any) -> Any:
+        node = self._nodes.get(id(ci))
+        if node is not None:
+            return node
+        resolver = lookup.resolver
+        classifier = resolver.classifier(ci.classifier) if ci.classifier else None
+        parent_obj = ci.eContainer()
+        if parent_obj is None or not _model.is_a(parent_obj, "ComponentInstance"):
+            node = lookup.root_node(classifier, ci)
+        else:
+            parent = self._node(lookup, parent_obj)
+            sub = _by_name(resolver.subcomponents(parent.impl), ci.subcomponent or ci.name)
+            if classifier is None and sub is not None:
+                classifier = resolver.subcomponent_classifier(sub)
+            node = lookup.child_node(parent, sub, classifier, ci, list(ci.index), ci.name)
+        self._nodes[id(ci)] = node
+        return node
+
+    def _declared(self, lookup: Any, obj: Any, key: str) -> bool | None:
+        if _model.is_a(obj, "ComponentInstance"):
+            return lookup.component_found(self._node(lookup, obj), key) is not None
+        if not _model.is_a(obj, "FeatureInstance"):
+            return None
+        path: list[Any] = []
+        current = obj
+        while current is not None and _model.is_a(current, "FeatureInstance"):
+            path.append(current)
+            current = current.eContainer()
+        if current is None:
+            return None
+        path.reverse()
+        resolver = lookup.resolver
+        node = self._node(lookup, current)
+        chain: list[Any] = []
+        features = resolver.features(node.classifier)
+        for fi in path:
+            decl = _by_name(features, fi.feature or fi.name)
+            if decl is None:
+                return None
+            chain.append(decl)
+            group = resolver.feature_classifier(decl)
+            features = (
+                resolver.feature_group_features(group)[0]
+                if group is not None and _model.is_a(group, "FeatureGroupType")
+                else []
+            )
+        names = [(fi.name or "", fi.index or 0) for fi in path]
+        return lookup.feature_found(node, chain, names, key) is not None
