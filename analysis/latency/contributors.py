@@ -112,6 +112,7 @@ class FlowWalk:
     ) -> None:
         self.reader = reader
         self.assigned_values = assigned
+        self._demand: Any = None  #: the processor speeds, made when a Reference_Processor asks
         self.mode = mode
         self.prefs = preferences
         self.legacy = preferences.revision.startswith("2014")
@@ -410,10 +411,33 @@ class FlowWalk:
             port = getattr(element, "source", None)
             category = str(getattr(getattr(port, "category", None), "name", "")) if port is not None else ""
             if category in ("eventPort", "eventDataPort") and self.assigned(port, name):
-                return self.us(port, name, "min"), self.us(port, name)
+                scale = self.processor_scale(component)
+                return self.us(port, name, "min") * scale, self.us(port, name) * scale
         if category_of(component) in _EXEC_CATEGORIES:
-            return self.us(component, name, "min"), self.us(component, name)
+            scale = self.processor_scale(component)
+            return self.us(component, name, "min") * scale, self.us(component, name) * scale
         return Fraction(0), Fraction(0)
+
+    def processor_scale(self, component: Any) -> Fraction:
+        """OSATE's ``AnalysisUtils.scaleTimeRange``: times given for the component's
+        ``Reference_Processor`` scale by its MIPS over the MIPS of the physical processor the
+        component is bound to (``SEI::MIPSCapacity``, else ``Processor_Capacity``); 1 when
+        either is unknown."""
+        if not self.reader.value(component, "Reference_Processor", self.mode):
+            return Fraction(1)
+        if self._demand is None:
+            from rosaadl.analysis.demand import ResourceDemand
+
+            root = component
+            while hasattr(root.eContainer(), "componentInstances"):
+                root = root.eContainer()
+            self._demand = ResourceDemand(root, [])
+        reference = self._demand.reference_mips(component, self.mode)
+        processor = self._demand.bindings.physical_processor(component, self.mode)
+        capacity = self.reader.mips_capacity(processor, self.mode) if processor is not None else 0
+        if not reference or not capacity:
+            return Fraction(1)
+        return Fraction(reference) / Fraction(capacity)
 
     def queuing(
         self, component: Any, incoming: Any, period: Fraction, worst: Fraction, best: Fraction

@@ -253,10 +253,64 @@ def test_queue_size_of_one_assigned_is_a_queue(workspace):
     assert (full.best_us, full.worst_us) == (12000, 13000)
 
 
+_SCALED = """
+package Scaled
+public
+  processor slow
+    properties Processor_Capacity => 100.0 MIPS;
+  end slow;
+  processor fast
+    properties Processor_Capacity => 500.0 MIPS;
+  end fast;
+  thread worker
+    features i: in event port; o: out event port;
+    flows through: flow path i -> o;
+    properties
+      Dispatch_Protocol => Sporadic;
+      Period => 50 ms;
+      Compute_Execution_Time => 10 ms .. 20 ms;
+  end worker;
+  process app
+    features i: in event port; o: out event port;
+    properties Reference_Processor => classifier (Scaled::slow);
+  end app;
+  process implementation app.i
+    subcomponents
+      first: thread worker;
+      second: thread worker;
+    connections
+      c0: port i -> first.i;
+      c1: port first.o -> second.i;
+      c2: port second.o -> o;
+    flows
+      chain: end to end flow first.through -> c1 -> second.through;
+  end app.i;
+  system top
+  end top;
+  system implementation top.i
+    subcomponents
+      a: process app.i;
+      cpu: processor fast;
+    properties
+      Actual_Processor_Binding => (reference (cpu)) applies to a;
+  end top.i;
+end Scaled;
+"""
+
+
+def test_execution_time_scales_to_the_bound_processor(workspace):
+    """``AnalysisUtils.scaleTimeRange``: execution times written for the ``Reference_Processor``
+    (100 MIPS) take ``100 / 500`` of their value on the 500 MIPS processor the threads run on."""
+    chain = _flow(workspace, "Scaled::top.i", "a.chain", LatencyPreferences())
+    processing = [(h.best_us, h.worst_us, h.worst_method) for h in chain.hops if h.kind == "processing"]
+    assert processing == [(2000, 4000, "processing time"), (2000, 4000, "processing time")]
+
+
 def _models() -> dict[str, str]:
     return {
         "Carried": _CARRIED_BY_CPU,
         "Backwards": _NEGATIVE_BUS,
         "Window": _WINDOW_ONLY,
         "Defaulted": _DEFAULTED,
+        "Scaled": _SCALED,
     }
