@@ -42,7 +42,7 @@ from fractions import Fraction
 from typing import Any
 
 from rosaadl.analysis.instance_values import PropertyReader, SystemMode, category_of
-from rosaadl.analysis.latency.assigned import AssignedValues
+from rosaadl.analysis.latency.declarative import DeclarativeValues
 from rosaadl.analysis.latency.model import Contributor
 from rosaadl.analysis.latency.transmission import Transmission
 from rosaadl.model import instance_path
@@ -108,10 +108,10 @@ class FlowWalk:
         preferences: Any,
         transmission: Transmission,
         response_times: dict[str, Fraction] | None = None,
-        assigned: AssignedValues | None = None,
+        declarative: DeclarativeValues | None = None,
     ) -> None:
         self.reader = reader
-        self.assigned_values = assigned
+        self.declarative = declarative
         self._demand: Any = None  #: the processor speeds, made when a Reference_Processor asks
         self.mode = mode
         self.prefs = preferences
@@ -130,9 +130,9 @@ class FlowWalk:
     def declared(self, obj: Any, name: str) -> bool | None:
         """Whether an association of ``name`` reaches ``obj`` (OSATE's "assigned": the default
         value does not count); None when the instance has no declarative model to tell."""
-        if self.assigned_values is None:
+        if self.declarative is None:
             return None
-        return self.assigned_values.declared(obj, name)
+        return self.declarative.declared(obj, name)
 
     def dispatch(self, component: Any) -> str:
         return (self.reader.enum(component, "Thread_Properties::Dispatch_Protocol", self.mode) or "").lower()

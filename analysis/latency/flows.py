@@ -23,9 +23,9 @@ from rosaadl.analysis.instance_values import (
     instance_root,
     system_modes,
 )
-from rosaadl.analysis.latency.assigned import AssignedValues
 from rosaadl.analysis.latency.chains import chain_elements, refine_by_threads, thread_chains
 from rosaadl.analysis.latency.contributors import FlowWalk, flatten_flow, is_connection
+from rosaadl.analysis.latency.declarative import DeclarativeValues
 from rosaadl.analysis.latency.model import (
     Contributor,
     LatencyChain,
@@ -134,7 +134,7 @@ def _hops(rows: list[Contributor], revision: str, major_frame: bool = True) -> t
         hops.append(
             LatencyHop(
                 row.kind,
-                instance_path(row.element),
+                instance_path(row.element) or row.label.partition(" ")[2],
                 row.shown(False),
                 row.shown(True),
                 "; ".join(row.comments),
@@ -297,11 +297,11 @@ def analyze_latency(
     response_times = thread_response_times(root, schedulability) if derived and specs else {}
     results: list[LatencyChain] = []
     soms = system_modes(root)
-    assigned = AssignedValues(root)
+    declarative = DeclarativeValues(root)
     for som in soms:
         for mode_name, synchronous in _MODES:
-            transmission = Transmission(reader, som)
-            walk = FlowWalk(reader, som, prefs, transmission, response_times, assigned)
+            transmission = Transmission(reader, som, declarative)
+            walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative)
             entries = []
             for name, flow, elements in specs:
                 if flow is not None and not som.active(flow):

@@ -306,6 +306,76 @@ def test_execution_time_scales_to_the_bound_processor(workspace):
     assert processing == [(2000, 4000, "processing time"), (2000, 4000, "processing time")]
 
 
+_WRAPPED = """
+package Wrapped
+public
+  data msg
+    properties Data_Size => 100 Bytes;
+  end msg;
+  virtual bus frame
+    properties Data_Size => 20 Bytes; Latency => 1 ms .. 1 ms; Period => 10 ms;
+  end frame;
+  virtual bus secure
+    properties
+      Required_Virtual_Bus_Class => (classifier (Wrapped::frame));
+      Data_Size => 30 Bytes;
+      Transmission_Time => [Fixed => 1 ms .. 1 ms; PerByte => 0.01 ms .. 0.01 ms;];
+  end secure;
+  bus wire
+    properties Transmission_Time => [Fixed => 0 ms .. 0 ms; PerByte => 0.02 ms .. 0.02 ms;];
+  end wire;
+  abstract sender
+    features o: out data port msg;
+    flows src: flow source o {Latency => 1 ms .. 1 ms;};
+  end sender;
+  abstract listener
+    features i: in data port msg;
+    flows snk: flow sink i {Latency => 1 ms .. 1 ms;};
+  end listener;
+  system top
+  end top;
+  system implementation top.i
+    subcomponents
+      s: abstract sender;
+      l: abstract listener;
+      net: bus wire;
+    connections
+      bound: port s.o -> l.i {
+        Required_Virtual_Bus_Class => (classifier (Wrapped::secure));
+        Actual_Connection_Binding => (reference (net));
+      };
+      loose: port s.o -> l.i {Required_Virtual_Bus_Class => (classifier (Wrapped::secure));};
+    flows
+      over_net: end to end flow s.src -> bound -> l.snk;
+      unbound: end to end flow s.src -> loose -> l.snk;
+  end top.i;
+end Wrapped;
+"""
+
+
+def test_required_protocols_wrap_the_message(workspace):
+    """``processActualConnectionBindings*`` and ``computeTotalDataSize``: the protocols a
+    connection requires by classifier (``secure``, which requires ``frame``) sample when
+    periodic, transmit the message wrapped in the protocols above them (secure: 1 ms + 130 bytes
+    × 0.01 ms), and the bus carries the message with every overhead (150 bytes × 0.02 ms); a
+    connection bound to nothing transmits nothing, but samples."""
+    chain = _flow(workspace, "Wrapped::top.i", "over_net", LatencyPreferences())
+    under = [(h.label, h.best_us, h.worst_us, h.worst_method) for h in chain.hops if h.depth == 1]
+    assert under == [
+        ("protocol Wrapped::frame", 0, 10000, "sampling protocol/bus"),
+        ("protocol Wrapped::frame", 0, 0, "queued"),
+        ("protocol Wrapped::secure", 2300, 2300, "transmission time"),
+        ("protocol Wrapped::frame", 1000, 1000, "specified"),
+        ("bus net", 3000, 3000, "transmission time"),
+        ("bus net", 0, 0, "queued"),
+        ("bus net", 0, 0, "sampling protocol/bus"),
+    ]
+    assert (chain.best_us, chain.worst_us) == (8300, 18300)
+    loose = _flow(workspace, "Wrapped::top.i", "unbound", LatencyPreferences())
+    assert [h.worst_method for h in loose.hops if h.depth == 1] == ["sampling protocol/bus", "queued"]
+    assert (loose.best_us, loose.worst_us) == (2000, 12000)
+
+
 def _models() -> dict[str, str]:
     return {
         "Carried": _CARRIED_BY_CPU,
@@ -313,4 +383,5 @@ def _models() -> dict[str, str]:
         "Window": _WINDOW_ONLY,
         "Defaulted": _DEFAULTED,
         "Scaled": _SCALED,
+        "Wrapped": _WRAPPED,
     }

@@ -1,4 +1,7 @@
-"""Whether a property is *assigned* to an instance object, as OSATE's flow latency analysis asks.
+"""What the flow latency analysis asks of the declarative model an instance was made from.
+
+**Assigned values.** Whether a property is *assigned* to an instance object, as OSATE's flow
+latency analysis asks.
 
 OSATE takes an assigned ``Deadline`` as the worst case under its ``DL`` preference, and an
 assigned ``Queue_Size`` as a queue (``FlowLatencyAnalysisSwitch.isAssignedDeadline`` and
@@ -9,6 +12,10 @@ model the instance was made from: the AADL lookup order (contained associations,
 subcomponent, the classifiers, ``inherit``) without the default value. An instance without its
 declarative model (read from an ``.aaxl2`` file, or built by hand) carries assigned values only:
 there a value is assigned when it is present.
+
+**Classifiers.** ``Required_Virtual_Bus_Class`` names protocols by classifier, not by instance:
+their ``Period``, ``Latency``, ``Transmission_Time``, ``Data_Size`` and own required protocols
+are read on the classifiers (the AADL lookup order: the implementation, its ``extends``, the type).
 """
 
 from __future__ import annotations
@@ -19,7 +26,7 @@ from typing import Any
 from rosaadl import model as _model
 from rosaadl.errors import RosaadlError
 
-__all__ = ["AssignedValues"]
+__all__ = ["DeclarativeValues"]
 
 log = logging.getLogger(__name__)
 
@@ -29,9 +36,10 @@ def _by_name(elements: Any, name: str | None) -> Any | None:
     return next((e for e in elements if (e.name or "").lower() == wanted), None)
 
 
-class AssignedValues:
-    """Answers "is property ``name`` assigned to this component or feature instance?" for one
-    instance, from its declarative model when the instance has one at hand."""
+class DeclarativeValues:
+    """Answers, for one instance, "is property ``name`` assigned to this component or feature
+    instance?" and "what is property ``name`` of this classifier?" from the declarative model,
+    when the instance has one at hand."""
 
     def __init__(self, root: Any) -> None:
         self.root = root
@@ -54,6 +62,27 @@ class AssignedValues:
                 except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
                     log.debug("no declarative model for assigned values: %s", exc)
         return self._lookup
+
+    def classifier(self, name: str) -> Any | None:
+        """The classifier a qualified name (``Pkg::vb``) names, or None."""
+        holder = _model.root_of(self.root)
+        if self.lookup() is None or not isinstance(name, str):
+            return None
+        try:
+            return _model.find_classifier(holder, name)
+        except (RosaadlError, LookupError, AttributeError, TypeError):
+            return None
+
+    def classifier_value(self, classifier: Any, name: str) -> Any:
+        """The Python value of property ``name`` on ``classifier`` (None when it has none)."""
+        lookup = self.lookup()
+        if lookup is None:
+            return None
+        try:
+            return lookup.python_value(classifier, name)
+        except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
+            log.debug("%s of classifier %s not resolved: %s", name, getattr(classifier, "name", ""), exc)
+            return None
 
     def declared(self, obj: Any, name: str) -> bool | None:
         """Whether an association of ``name`` reaches ``obj`` in the declarative model (None when
