@@ -13,6 +13,9 @@ subcomponent, the classifiers, ``inherit``) without the default value. An instan
 declarative model (read from an ``.aaxl2`` file, or built by hand) carries assigned values only:
 there a value is assigned when it is present.
 
+**Modes of end-to-end flows.** The modes an end-to-end flow is declared ``in modes`` of (the
+instance does not carry them).
+
 **Classifiers.** ``Required_Virtual_Bus_Class`` names protocols by classifier, not by instance:
 their ``Period``, ``Latency``, ``Transmission_Time``, ``Data_Size`` and own required protocols
 are read on the classifiers (the AADL lookup order: the implementation, its ``extends``, the type).
@@ -83,6 +86,21 @@ class DeclarativeValues:
         except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
             log.debug("%s of classifier %s not resolved: %s", name, getattr(classifier, "name", ""), exc)
             return None
+
+    def flow_modes(self, flow: Any) -> list[str]:
+        """The modes (lower case) an end-to-end flow instance's declaration is ``in modes`` of,
+        [] when it is in every mode or the declarative model cannot tell."""
+        lookup = self.lookup()
+        container = flow.eContainer()
+        if lookup is None or container is None or not _model.is_a(container, "ComponentInstance"):
+            return []
+        try:
+            node = self._node(lookup, container)
+            decl = _by_name(lookup.resolver.end_to_end_flows(node.impl), flow.flow or flow.name)
+        except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
+            log.debug("flow %s not resolved: %s", _model.instance_path(flow), exc)
+            return []
+        return [m.lower() for m in (getattr(decl, "inModes", None) or [])]
 
     def declared(self, obj: Any, name: str) -> bool | None:
         """Whether an association of ``name`` reaches ``obj`` in the declarative model (None when

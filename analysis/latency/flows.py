@@ -40,7 +40,7 @@ from rosaadl.analysis.latency.transmission import Transmission
 from rosaadl.errors import Diagnostic, Location, ModelError
 from rosaadl.model import component_instances, instance_path
 
-__all__ = ["analyze_latency", "summary"]
+__all__ = ["analyze_latency", "flow_active", "summary"]
 
 log = logging.getLogger(__name__)
 _US = 1_000_000
@@ -251,6 +251,22 @@ def _specs(
     return specs, derived
 
 
+def flow_active(flow: Any, elements: list[Any], som: SystemMode, declarative: DeclarativeValues) -> bool:
+    """Whether an end-to-end flow exists in a system operation mode, as OSATE's instantiation
+    decides it: the flow is in the modes its declaration names (``in modes``, against the
+    current mode of the component declaring it) and every element of it exists in the mode (a
+    connection or subcomponent ``in modes`` leaves the flow out where it is absent)."""
+    if not som.active(flow) or not all(som.active(e) for e in elements):
+        return False
+    modes = declarative.flow_modes(flow) if som.modes else []
+    if not modes:
+        return True
+    current = som.current_mode(flow.eContainer())
+    if current is None:
+        return True
+    return (current.name or current.mode or "").lower() in modes
+
+
 def thread_response_times(root: Any, schedulability: Any) -> dict[str, Fraction]:
     """Each thread's worst-case response time in µs from the schedulability analysis (run on
     ``root`` when ``schedulability`` is None); a lower bound bounds nothing and is left out."""
@@ -304,7 +320,7 @@ def analyze_latency(
             walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative)
             entries = []
             for name, flow, elements in specs:
-                if flow is not None and not som.active(flow):
+                if flow is not None and not flow_active(flow, elements, som, declarative):
                     continue
                 entries.append((name, flow, elements, walk.contributors(elements)))
             if transmission.waiting and not prefs.revision.startswith("2014"):

@@ -376,6 +376,50 @@ def test_required_protocols_wrap_the_message(workspace):
     assert (loose.best_us, loose.worst_us) == (2000, 12000)
 
 
+_MODAL = """
+package Modal
+public
+  abstract camera
+    features o: out feature;
+    flows src: flow source o {Latency => 1 ms .. 2 ms;};
+  end camera;
+  abstract display
+    features i: in feature;
+    flows snk: flow sink i {Latency => 1 ms .. 2 ms;};
+  end display;
+  system top
+    modes
+      normal: initial mode;
+      degraded: mode;
+  end top;
+  system implementation top.i
+    subcomponents
+      cam: abstract camera;
+      screen: abstract display;
+    connections
+      live: feature cam.o -> screen.i in modes (normal);
+      still: feature cam.o -> screen.i;
+    flows
+      video: end to end flow cam.src -> live -> screen.snk;
+      snapshot: end to end flow cam.src -> still -> screen.snk in modes (degraded);
+  end top.i;
+end Modal;
+"""
+
+
+def test_flows_exist_in_the_modes_of_their_declaration_and_elements(workspace):
+    """OSATE instantiates an end-to-end flow in the system operation modes where its declaration
+    is (``in modes``) and all its elements are: the video over a connection of the normal mode
+    only, the snapshot in the degraded mode only."""
+    from rosaadl.analysis.instance_values import system_modes
+
+    system = instantiate(workspace, "Modal::top.i")
+    current = {som.name: som.modes[0].name for som in system_modes(system)}
+    result = analyze_latency(system)
+    found = sorted((c.name, current[c.system_mode]) for c in result.chains if c.mode == "async")
+    assert found == [("snapshot", "degraded"), ("video", "normal")]
+
+
 def _models() -> dict[str, str]:
     return {
         "Carried": _CARRIED_BY_CPU,
@@ -384,4 +428,5 @@ def _models() -> dict[str, str]:
         "Defaulted": _DEFAULTED,
         "Scaled": _SCALED,
         "Wrapped": _WRAPPED,
+        "Modal": _MODAL,
     }
