@@ -152,6 +152,22 @@ class FlowWalk:
             return Fraction(0)
         return self.us(component, "Timing_Properties::Period")
 
+    def deadline(self, component: Any) -> Fraction:
+        """The component's ``Deadline``; where the instance has none (rosaadl's instances carry
+        the default values of the properties a model associates somewhere, and a model may
+        associate no ``Deadline`` at all), its default value, the ``Period``, as OSATE evaluates
+        it today. The reports of OSATE 2.2-2.4 (revision ``2018``) and 2014 show no deadline
+        there, and an instance read without its declarative model (an ``.aaxl2`` file) is taken
+        with the values it carries."""
+        if category_of(component) not in _DEADLINE_CATEGORIES:
+            return Fraction(0)
+        if self.reader.value(component, "Timing_Properties::Deadline", self.mode) is None:
+            declarative = self.declarative is not None and self.declarative.lookup() is not None
+            if self.prefs.revision == "current" and declarative:
+                return self.period(component)
+            return Fraction(0)
+        return self.us(component, "Timing_Properties::Deadline")
+
     def is_periodic(self, component: Any) -> bool:
         if self.period(component) <= 0:
             return False
@@ -266,11 +282,7 @@ class FlowWalk:
         )
         spec_worst = self.us(element, "Communication_Properties::Latency") if has_latency else Fraction(0)
         period = self.period(component)
-        deadline = (
-            self.us(component, "Timing_Properties::Deadline")
-            if category_of(component) in _DEADLINE_CATEGORIES
-            else Fraction(0)
-        )
+        deadline = self.deadline(component)
         # OSATE's isAssignedDeadline: a Deadline defaulted to the Period is not assigned
         declared = self.declared(component, "Timing_Properties::Deadline") if deadline > 0 else False
         deadline_assigned = deadline > 0 and declared is not False

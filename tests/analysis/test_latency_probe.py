@@ -420,6 +420,44 @@ def test_flows_exist_in_the_modes_of_their_declaration_and_elements(workspace):
     assert found == [("snapshot", "degraded"), ("video", "normal")]
 
 
+_NO_DEADLINE = """
+package Undated
+public
+  thread ticker
+    features o: out data port;
+    flows src: flow source o;
+  end ticker;
+  thread logger
+    features i: in data port;
+    flows snk: flow sink i {Latency => 0 ms .. 0 ms;};
+  end logger;
+  process pair
+  end pair;
+  process implementation pair.i
+    subcomponents
+      t: thread ticker {Period => 40 ms;};
+      l: thread logger {Period => 40 ms;};
+    connections
+      c: port t.o -> l.i {Timing => Delayed;};
+    flows
+      tick: end to end flow t.src -> c -> l.snk;
+  end pair.i;
+end Undated;
+"""
+
+
+def test_a_model_without_any_deadline_takes_the_default(tmp_path):
+    """``mapComponentInstance``: with neither execution time nor flow latency, the worst case is
+    the ``Deadline``, whose default is the ``Period`` ("Using deadline as execution time was not
+    set"), also in a model that associates ``Deadline`` nowhere (its instances carry none)."""
+    (tmp_path / "Undated.aadl").write_text(_NO_DEADLINE, encoding="utf-8")
+    files = [tmp_path / "Undated.aadl"] + [f for f in library_files() if f.stem in _PREDECLARED]
+    chain = _flow(read_files(files, include_library=False), "Undated::pair.i", "tick", LatencyPreferences())
+    processing = [(h.label, h.worst_us, h.worst_method) for h in chain.hops if h.kind == "processing"]
+    assert processing == [("thread t", 40000, "deadline"), ("thread l", 40000, "deadline")]
+    assert (chain.best_us, chain.worst_us) == (40000, 120000)
+
+
 def _models() -> dict[str, str]:
     return {
         "Carried": _CARRIED_BY_CPU,
