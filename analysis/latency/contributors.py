@@ -109,9 +109,11 @@ class FlowWalk:
         transmission: Transmission,
         response_times: dict[str, Fraction] | None = None,
         declarative: DeclarativeValues | None = None,
+        derived: bool = False,
     ) -> None:
         self.reader = reader
         self.declarative = declarative
+        self.derived = derived  #: topic chains and refined flows: threads without times add nothing
         self._demand: Any = None  #: the processor speeds, made when a Reference_Processor asks
         self.mode = mode
         self.prefs = preferences
@@ -157,13 +159,14 @@ class FlowWalk:
         the default values of the properties a model associates somewhere, and a model may
         associate no ``Deadline`` at all), its default value, the ``Period``, as OSATE evaluates
         it today. The reports of OSATE 2.2-2.4 (revision ``2018``) and 2014 show no deadline
-        there, and an instance read without its declarative model (an ``.aaxl2`` file) is taken
-        with the values it carries."""
+        there, an instance read without its declarative model (an ``.aaxl2`` file) is taken
+        with the values it carries, and in topic chains and flows refined by threads (rosaadl's)
+        a thread without execution time (a ROS publisher or subscriber) adds nothing."""
         if category_of(component) not in _DEADLINE_CATEGORIES:
             return Fraction(0)
         if self.reader.value(component, "Timing_Properties::Deadline", self.mode) is None:
             declarative = self.declarative is not None and self.declarative.lookup() is not None
-            if self.prefs.revision == "current" and declarative:
+            if self.prefs.revision == "current" and declarative and not self.derived:
                 return self.period(component)
             return Fraction(0)
         return self.us(component, "Timing_Properties::Deadline")

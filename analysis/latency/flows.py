@@ -310,6 +310,16 @@ def analyze_latency(
     diagnostics: list[Diagnostic] = []
     reader = PropertyReader(diagnostics)
     specs, derived = _specs(root, chains, limit, reader)
+    if not specs and chains is None:
+        # OSATE's words (an error there: its analysis has nothing to report; here a warning, as
+        # the other analyses of the run may still have something to say)
+        diagnostics.append(
+            Diagnostic(
+                "warning",
+                "No end-to-end flow instances were found",
+                Location(path=instance_path(root)),
+            )
+        )
     response_times = thread_response_times(root, schedulability) if derived and specs else {}
     results: list[LatencyChain] = []
     soms = system_modes(root)
@@ -317,7 +327,7 @@ def analyze_latency(
     for som in soms:
         for mode_name, synchronous in _MODES:
             transmission = Transmission(reader, som, declarative)
-            walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative)
+            walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative, derived)
             entries = []
             for name, flow, elements in specs:
                 if flow is not None and not flow_active(flow, elements, som, declarative):
