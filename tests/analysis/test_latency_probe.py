@@ -458,6 +458,18 @@ def test_a_model_without_any_deadline_takes_the_default(tmp_path):
     assert (chain.best_us, chain.worst_us) == (40000, 120000)
 
 
+def test_a_model_without_flows_says_so(workspace):
+    """``FlowLatencyAnalysisSwitch.invoke``: "No end-to-end flow instances were found" (OSATE's
+    error; a warning here) for a model with neither end-to-end flows nor topic chains."""
+    system = instantiate(workspace, "Carried::top.i")
+    system.endToEndFlows.clear()
+    result = analyze_latency(system)
+    assert result.chains == ()
+    assert [(d.severity, d.message) for d in result.diagnostics] == [
+        ("warning", "No end-to-end flow instances were found")
+    ]
+
+
 def _models() -> dict[str, str]:
     return {
         "Carried": _CARRIED_BY_CPU,
