@@ -378,8 +378,9 @@ class FlowWalk:
             worst, worst_method = deadline, "deadline"
         if not worst and spec_worst:
             worst, worst_method = spec_worst, "specified"
-        elif not worst and deadline and not self.legacy:
+        elif not worst and deadline and not self.legacy and not self.derived:
             # neither execution time nor flow latency: the deadline, defaulted to the period
+            # (rosaadl's topic chains: a thread without times, a ROS publisher, adds nothing)
             worst, worst_method = deadline, "deadline"
             processing.comment("Using deadline as execution time was not set")
         best, best_method = Fraction(0), "unknown"
