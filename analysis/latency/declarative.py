@@ -28,6 +28,7 @@ from typing import Any
 
 from rosaadl import model as _model
 from rosaadl.errors import RosaadlError
+from rosaadl.lookup.instances import find_instance
 
 __all__ = ["DeclarativeValues"]
 
@@ -137,32 +138,9 @@ class DeclarativeValues:
         return node
 
     def _declared(self, lookup: Any, obj: Any, key: str) -> bool | None:
-        if _model.is_a(obj, "ComponentInstance"):
-            return lookup.component_found(self._node(lookup, obj), key) is not None
-        if not _model.is_a(obj, "FeatureInstance"):
+        """Whether the lookup of ``key`` on ``obj`` ends at an association (the default value,
+        which :func:`~rosaadl.lookup.instances.find_instance` adds last, has none)."""
+        if not _model.is_a(obj, "ComponentInstance", "FeatureInstance"):
             return None
-        path: list[Any] = []
-        current = obj
-        while current is not None and _model.is_a(current, "FeatureInstance"):
-            path.append(current)
-            current = current.eContainer()
-        if current is None:
-            return None
-        path.reverse()
-        resolver = lookup.resolver
-        node = self._node(lookup, current)
-        chain: list[Any] = []
-        features = resolver.features(node.classifier)
-        for fi in path:
-            decl = _by_name(features, fi.feature or fi.name)
-            if decl is None:
-                return None
-            chain.append(decl)
-            group = resolver.feature_classifier(decl)
-            features = (
-                resolver.feature_group_features(group)[0]
-                if group is not None and _model.is_a(group, "FeatureGroupType")
-                else []
-            )
-        names = [(fi.name or "", fi.index or 0) for fi in path]
-        return lookup.feature_found(node, chain, names, key) is not None
+        found, _evaluate, _reference = find_instance(lookup.associations, obj, key, None)
+        return found is not None and found.association is not None

@@ -45,32 +45,49 @@ def _rows(chain):
     return [(h.depth, h.kind, h.best_us, h.worst_us, h.best_method, h.worst_method) for h in chain.hops]
 
 
-_CARRIED_BY_CPU = """
-package Carried
+#: one emitter and one receiver, linked in three ways: over a processor, over a bus whose
+#: transmission time is negative, into a partition that has a window but no period
+_LINKS = """
+package Links
 public
   abstract emitter
     features o: out feature;
-    flows src: flow source o {Latency => 2 ms .. 3 ms;};
+    flows src: flow source o {Latency => 1 ms .. 2 ms;};
   end emitter;
   abstract receiver
     features i: in feature;
-    flows snk: flow sink i {Latency => 1 ms .. 1 ms;};
+    flows snk: flow sink i {Latency => 1 ms .. 2 ms;};
   end receiver;
   system top
   end top;
-  system implementation top.i
+  system implementation top.common
     subcomponents
       e: abstract emitter;
       r: abstract receiver;
-      board: processor {Latency => 4 ms .. 6 ms;};
     connections
       link: feature e.o -> r.i;
     flows
-      path: end to end flow e.src -> link -> r.snk {Latency => 0 ms .. 20 ms;};
+      path: end to end flow e.src -> link -> r.snk;
+  end top.common;
+  system implementation top.carried extends top.common
+    subcomponents
+      board: processor {Latency => 4 ms .. 6 ms;};
     properties
       Actual_Connection_Binding => (reference (board)) applies to link;
-  end top.i;
-end Carried;
+  end top.carried;
+  system implementation top.backwards extends top.common
+    subcomponents
+      wire: bus {Transmission_Time => [Fixed => -4 ms .. -3 ms;];};
+    properties
+      Actual_Connection_Binding => (reference (wire)) applies to link;
+  end top.backwards;
+  system implementation top.window extends top.common
+    subcomponents
+      slot: virtual processor {Execution_Time => 8 ms;};
+    properties
+      Actual_Processor_Binding => (reference (slot)) applies to r;
+  end top.window;
+end Links;
 """
 
 
@@ -79,93 +96,35 @@ def test_connection_bound_to_a_processor_adds_its_latency(workspace):
     ``Actual_Connection_Binding``, not only buses: a processor carrying the message adds its
     ``Latency`` (*specified*), then waits (*queued*) and samples (*sampling protocol/bus*) as an
     aperiodic bus does."""
-    chain = _flow(workspace, "Carried::top.i", "path")
+    chain = _flow(workspace, "Links::top.carried", "path")
     assert _rows(chain)[1:4] == [
         (1, "transmission", 4000, 6000, "specified", "specified"),
         (1, "queuing", 0, 0, "queued", "queued"),
         (1, "sampling", 0, 0, "sampling protocol/bus", "sampling protocol/bus"),
     ]
     assert _rows(chain)[4][:4] == (0, "connection", 4000, 6000)
-    assert (chain.best_us, chain.worst_us) == (7000, 10000)
-
-
-_NEGATIVE_BUS = """
-package Backwards
-public
-  abstract emitter
-    features o: out feature;
-    flows src: flow source o {Latency => 1 ms .. 2 ms;};
-  end emitter;
-  abstract receiver
-    features i: in feature;
-    flows snk: flow sink i {Latency => 2 ms .. 2 ms;};
-  end receiver;
-  system top
-  end top;
-  system implementation top.i
-    subcomponents
-      e: abstract emitter;
-      r: abstract receiver;
-      wire: bus {Transmission_Time => [Fixed => -4 ms .. -3 ms;];};
-    connections
-      link: feature e.o -> r.i;
-    flows
-      path: end to end flow e.src -> link -> r.snk;
-    properties
-      Actual_Connection_Binding => (reference (wire)) applies to link;
-  end top.i;
-end Backwards;
-"""
+    assert (chain.best_us, chain.worst_us) == (6000, 10000)
 
 
 def test_negative_transmission_time_gives_an_unknown_row(workspace):
     """``processTransmissionTime``: a bus whose transfer time is not 0 gets a row; a negative one
     adds nothing and its method is unknown (*no sampling/queuing latency*), not *specified*."""
-    chain = _flow(workspace, "Backwards::top.i", "path")
+    chain = _flow(workspace, "Links::top.backwards", "path")
     bus = next(h for h in chain.hops if h.kind == "transmission")
     unknown = "no sampling/queuing latency"
     assert (bus.best_us, bus.worst_us, bus.best_method, bus.worst_method) == (0, 0, unknown, unknown)
-    assert (chain.best_us, chain.worst_us) == (3000, 4000)
-
-
-_WINDOW_ONLY = """
-package Window
-public
-  abstract emitter
-    features o: out feature;
-    flows src: flow source o {Latency => 1 ms .. 2 ms;};
-  end emitter;
-  abstract receiver
-    features i: in feature;
-    flows snk: flow sink i {Latency => 1 ms .. 3 ms;};
-  end receiver;
-  system top
-  end top;
-  system implementation top.i
-    subcomponents
-      e: abstract emitter;
-      r: abstract receiver;
-      slot: virtual processor {Execution_Time => 8 ms;};
-    connections
-      link: feature e.o -> r.i;
-    flows
-      path: end to end flow e.src -> link -> r.snk;
-    properties
-      Actual_Processor_Binding => (reference (slot)) applies to r;
-  end top.i;
-end Window;
-"""
+    assert (chain.best_us, chain.worst_us) == (2000, 4000)
 
 
 def test_partition_without_period_repeats_after_its_duration(workspace):
     """``mapConnectionInstance``: a partition the flow enters, with a window duration but neither
     a major frame nor a period, samples at its duration ("No partition period. Using partition
     duration"): the worst case waits a whole window."""
-    chain = _flow(workspace, "Window::top.i", "path")
+    chain = _flow(workspace, "Links::top.window", "path")
     entered = next(h for h in chain.hops if h.kind == "partition")
     assert (entered.best_us, entered.worst_us, entered.worst_method) == (0, 8000, "partition offset")
     assert "No partition period. Using partition duration" in entered.note
-    assert (chain.best_us, chain.worst_us) == (2000, 13000)
+    assert (chain.best_us, chain.worst_us) == (2000, 12000)
 
 
 _DEFAULTED = """
@@ -379,14 +338,7 @@ def test_required_protocols_wrap_the_message(workspace):
 _MODAL = """
 package Modal
 public
-  abstract camera
-    features o: out feature;
-    flows src: flow source o {Latency => 1 ms .. 2 ms;};
-  end camera;
-  abstract display
-    features i: in feature;
-    flows snk: flow sink i {Latency => 1 ms .. 2 ms;};
-  end display;
+  with Links;
   system top
     modes
       normal: initial mode;
@@ -394,8 +346,8 @@ public
   end top;
   system implementation top.i
     subcomponents
-      cam: abstract camera;
-      screen: abstract display;
+      cam: abstract Links::emitter;
+      screen: abstract Links::receiver;
     connections
       live: feature cam.o -> screen.i in modes (normal);
       still: feature cam.o -> screen.i;
@@ -461,7 +413,7 @@ def test_a_model_without_any_deadline_takes_the_default(tmp_path):
 def test_a_model_without_flows_says_so(workspace):
     """``FlowLatencyAnalysisSwitch.invoke``: "No end-to-end flow instances were found" (OSATE's
     error; a warning here) for a model with neither end-to-end flows nor topic chains."""
-    system = instantiate(workspace, "Carried::top.i")
+    system = instantiate(workspace, "Links::top.common")
     system.endToEndFlows.clear()
     result = analyze_latency(system)
     assert result.chains == ()
@@ -472,9 +424,7 @@ def test_a_model_without_flows_says_so(workspace):
 
 def _models() -> dict[str, str]:
     return {
-        "Carried": _CARRIED_BY_CPU,
-        "Backwards": _NEGATIVE_BUS,
-        "Window": _WINDOW_ONLY,
+        "Links": _LINKS,
         "Defaulted": _DEFAULTED,
         "Scaled": _SCALED,
         "Wrapped": _WRAPPED,
