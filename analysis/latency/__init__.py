@@ -7,7 +7,9 @@ own), one idea per module:
 * :mod:`.contributors`: what each flow element contributes (sampling, processing, queuing,
   connections, partitions);
 * :mod:`.transmission`: buses and protocols under a connection (transmission, periodic
-  protocols, queuing on shared buses);
+  protocols, queuing on shared buses, required protocols);
+* :mod:`.declarative`: what the declarative model answers (assigned values, required protocol
+  classifiers, the modes of end-to-end flows);
 * :mod:`.totals`: the end-to-end totals of an asynchronous and a synchronous system;
 * :mod:`.chains`: flows derived from topic chains (threads over port connections);
 * :mod:`.flows`: the analysis of an instance (:func:`analyze_latency`);

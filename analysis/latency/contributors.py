@@ -42,6 +42,7 @@ from fractions import Fraction
 from typing import Any
 
 from rosaadl.analysis.instance_values import PropertyReader, SystemMode, category_of
+from rosaadl.analysis.latency.declarative import DeclarativeValues
 from rosaadl.analysis.latency.model import Contributor
 from rosaadl.analysis.latency.transmission import Transmission
 from rosaadl.model import instance_path
@@ -107,8 +108,13 @@ class FlowWalk:
         preferences: Any,
         transmission: Transmission,
         response_times: dict[str, Fraction] | None = None,
+        declarative: DeclarativeValues | None = None,
+        derived: bool = False,
     ) -> None:
         self.reader = reader
+        self.declarative = declarative
+        self.derived = derived  #: topic chains and refined flows: threads without times add nothing
+        self._demand: Any = None  #: the processor speeds, made when a Reference_Processor asks
         self.mode = mode
         self.prefs = preferences
         self.legacy = preferences.revision.startswith("2014")
@@ -122,6 +128,13 @@ class FlowWalk:
 
     def assigned(self, obj: Any, name: str) -> bool:
         return obj is not None and self.reader.value(obj, name, self.mode) is not None
+
+    def declared(self, obj: Any, name: str) -> bool | None:
+        """Whether an association of ``name`` reaches ``obj`` (OSATE's "assigned": the default
+        value does not count); None when the instance has no declarative model to tell."""
+        if self.declarative is None:
+            return None
+        return self.declarative.declared(obj, name)
 
     def dispatch(self, component: Any) -> str:
         return (self.reader.enum(component, "Thread_Properties::Dispatch_Protocol", self.mode) or "").lower()
@@ -140,6 +153,23 @@ class FlowWalk:
         if category_of(component) not in _PERIOD_CATEGORIES:
             return Fraction(0)
         return self.us(component, "Timing_Properties::Period")
+
+    def deadline(self, component: Any) -> Fraction:
+        """The component's ``Deadline``; where the instance has none (rosaadl's instances carry
+        the default values of the properties a model associates somewhere, and a model may
+        associate no ``Deadline`` at all), its default value, the ``Period``, as OSATE evaluates
+        it today. The reports of OSATE 2.2-2.4 (revision ``2018``) and 2014 show no deadline
+        there, an instance read without its declarative model (an ``.aaxl2`` file) is taken
+        with the values it carries, and in topic chains and flows refined by threads (rosaadl's)
+        a thread without execution time (a ROS publisher or subscriber) adds nothing."""
+        if category_of(component) not in _DEADLINE_CATEGORIES:
+            return Fraction(0)
+        if self.reader.value(component, "Timing_Properties::Deadline", self.mode) is None:
+            declarative = self.declarative is not None and self.declarative.lookup() is not None
+            if self.prefs.revision == "current" and declarative and not self.derived:
+                return self.period(component)
+            return Fraction(0)
+        return self.us(component, "Timing_Properties::Deadline")
 
     def is_periodic(self, component: Any) -> bool:
         if self.period(component) <= 0:
@@ -255,12 +285,10 @@ class FlowWalk:
         )
         spec_worst = self.us(element, "Communication_Properties::Latency") if has_latency else Fraction(0)
         period = self.period(component)
-        deadline = (
-            self.us(component, "Timing_Properties::Deadline")
-            if category_of(component) in _DEADLINE_CATEGORIES
-            else Fraction(0)
-        )
-        deadline_assigned = deadline > 0
+        deadline = self.deadline(component)
+        # OSATE's isAssignedDeadline: a Deadline defaulted to the Period is not assigned
+        declared = self.declared(component, "Timing_Properties::Deadline") if deadline > 0 else False
+        deadline_assigned = deadline > 0 and declared is not False
         periodic = self.is_periodic(component)
         if period <= 0 and self.dispatch(component) == "periodic":
             self.reader.report("error", "periodic thread has no Period; it is not sampled", component)
@@ -350,6 +378,11 @@ class FlowWalk:
             worst, worst_method = deadline, "deadline"
         if not worst and spec_worst:
             worst, worst_method = spec_worst, "specified"
+        elif not worst and deadline and not self.legacy and not self.derived:
+            # neither execution time nor flow latency: the deadline, defaulted to the period
+            # (rosaadl's topic chains: a thread without times, a ROS publisher, adds nothing)
+            worst, worst_method = deadline, "deadline"
+            processing.comment("Using deadline as execution time was not set")
         best, best_method = Fraction(0), "unknown"
         if response_best:
             best, best_method = response_best, "response"
@@ -394,10 +427,33 @@ class FlowWalk:
             port = getattr(element, "source", None)
             category = str(getattr(getattr(port, "category", None), "name", "")) if port is not None else ""
             if category in ("eventPort", "eventDataPort") and self.assigned(port, name):
-                return self.us(port, name, "min"), self.us(port, name)
+                scale = self.processor_scale(component)
+                return self.us(port, name, "min") * scale, self.us(port, name) * scale
         if category_of(component) in _EXEC_CATEGORIES:
-            return self.us(component, name, "min"), self.us(component, name)
+            scale = self.processor_scale(component)
+            return self.us(component, name, "min") * scale, self.us(component, name) * scale
         return Fraction(0), Fraction(0)
+
+    def processor_scale(self, component: Any) -> Fraction:
+        """OSATE's ``AnalysisUtils.scaleTimeRange``: times given for the component's
+        ``Reference_Processor`` scale by its MIPS over the MIPS of the physical processor the
+        component is bound to (``SEI::MIPSCapacity``, else ``Processor_Capacity``); 1 when
+        either is unknown."""
+        if not self.reader.value(component, "Reference_Processor", self.mode):
+            return Fraction(1)
+        if self._demand is None:
+            from rosaadl.analysis.demand import ResourceDemand
+
+            root = component
+            while hasattr(root.eContainer(), "componentInstances"):
+                root = root.eContainer()
+            self._demand = ResourceDemand(root, [])
+        reference = self._demand.reference_mips(component, self.mode)
+        processor = self._demand.bindings.physical_processor(component, self.mode)
+        capacity = self.reader.mips_capacity(processor, self.mode) if processor is not None else 0
+        if not reference or not capacity:
+            return Fraction(1)
+        return Fraction(reference) / Fraction(capacity)
 
     def queuing(
         self, component: Any, incoming: Any, period: Fraction, worst: Fraction, best: Fraction
@@ -407,10 +463,17 @@ class FlowWalk:
         category = str(getattr(getattr(incoming, "category", None), "name", ""))
         dispatch = self.dispatch(component)
         queue_size = self.reader.number(incoming, "Communication_Properties::Queue_Size", None, self.mode)
-        if queue_size is not None and queue_size != 1:
-            # OSATE counts an assigned Queue_Size only; our instances keep default values, so the
-            # predeclared default (1) reads as unassigned
-            size = queue_size
+        declared = (
+            self.declared(incoming, "Communication_Properties::Queue_Size")
+            if queue_size is not None
+            else False
+        )
+        if declared is None:
+            # no declarative model to tell: the predeclared default (1) reads as unassigned
+            declared = queue_size != 1
+        if declared:
+            # OSATE counts an assigned Queue_Size only (0 included: no queue, whatever the port)
+            size = queue_size or Fraction(0)
         elif (
             category == "dataPort"
             and category_of(component) in ("thread", "device", "abstract")
@@ -492,7 +555,12 @@ class FlowWalk:
                 rows.append(sub)
             row.subs = []
         if dst_part is not None and src_part is not dst_part:
-            rows.append(self.partition_row(dst_part, conn, start=False))
+            entered = self.partition_row(dst_part, conn, start=False)
+            if entered.partition_duration > 0 and not entered.period and not self.legacy:
+                # a window without a major frame or period repeats after its own duration
+                entered.period = entered.partition_duration
+                entered.comment("No partition period. Using partition duration")
+            rows.append(entered)
 
     def _reference_time(self, hardware: Any) -> Any | None:
         targets = self.reader.targets(hardware, "Timing_Properties::Reference_Time", self.mode)

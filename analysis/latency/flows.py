@@ -25,6 +25,7 @@ from rosaadl.analysis.instance_values import (
 )
 from rosaadl.analysis.latency.chains import chain_elements, refine_by_threads, thread_chains
 from rosaadl.analysis.latency.contributors import FlowWalk, flatten_flow, is_connection
+from rosaadl.analysis.latency.declarative import DeclarativeValues
 from rosaadl.analysis.latency.model import (
     Contributor,
     LatencyChain,
@@ -39,7 +40,7 @@ from rosaadl.analysis.latency.transmission import Transmission
 from rosaadl.errors import Diagnostic, Location, ModelError
 from rosaadl.model import component_instances, instance_path
 
-__all__ = ["analyze_latency", "summary"]
+__all__ = ["analyze_latency", "flow_active", "summary"]
 
 log = logging.getLogger(__name__)
 _US = 1_000_000
@@ -124,7 +125,7 @@ def summary(
     return issues
 
 
-def _hops(rows: list[Contributor], revision: str) -> tuple[LatencyHop, ...]:
+def _hops(rows: list[Contributor], revision: str, major_frame: bool = True) -> tuple[LatencyHop, ...]:
     hops: list[LatencyHop] = []
 
     def add(row: Contributor, depth: int) -> None:
@@ -133,13 +134,13 @@ def _hops(rows: list[Contributor], revision: str) -> tuple[LatencyHop, ...]:
         hops.append(
             LatencyHop(
                 row.kind,
-                instance_path(row.element),
+                instance_path(row.element) or row.label.partition(" ")[2],
                 row.shown(False),
                 row.shown(True),
                 "; ".join(row.comments),
                 row.label,
-                method_word(row.best_method, revision),
-                method_word(row.worst_method, revision),
+                method_word(row.best_method, revision, major_frame),
+                method_word(row.worst_method, revision, major_frame),
                 depth,
                 row.specified_best,
                 row.specified_worst,
@@ -250,6 +251,22 @@ def _specs(
     return specs, derived
 
 
+def flow_active(flow: Any, elements: list[Any], som: SystemMode, declarative: DeclarativeValues) -> bool:
+    """Whether an end-to-end flow exists in a system operation mode, as OSATE's instantiation
+    decides it: the flow is in the modes its declaration names (``in modes``, against the
+    current mode of the component declaring it) and every element of it exists in the mode (a
+    connection or subcomponent ``in modes`` leaves the flow out where it is absent)."""
+    if not som.active(flow) or not all(som.active(e) for e in elements):
+        return False
+    modes = declarative.flow_modes(flow) if som.modes else []
+    if not modes:
+        return True
+    current = som.current_mode(flow.eContainer())
+    if current is None:
+        return True
+    return (current.name or current.mode or "").lower() in modes
+
+
 def thread_response_times(root: Any, schedulability: Any) -> dict[str, Fraction]:
     """Each thread's worst-case response time in µs from the schedulability analysis (run on
     ``root`` when ``schedulability`` is None); a lower bound bounds nothing and is left out."""
@@ -293,16 +310,27 @@ def analyze_latency(
     diagnostics: list[Diagnostic] = []
     reader = PropertyReader(diagnostics)
     specs, derived = _specs(root, chains, limit, reader)
+    if not specs and chains is None:
+        # OSATE's words (an error there: its analysis has nothing to report; here a warning, as
+        # the other analyses of the run may still have something to say)
+        diagnostics.append(
+            Diagnostic(
+                "warning",
+                "No end-to-end flow instances were found",
+                Location(path=instance_path(root)),
+            )
+        )
     response_times = thread_response_times(root, schedulability) if derived and specs else {}
     results: list[LatencyChain] = []
     soms = system_modes(root)
+    declarative = DeclarativeValues(root)
     for som in soms:
         for mode_name, synchronous in _MODES:
-            transmission = Transmission(reader, som)
-            walk = FlowWalk(reader, som, prefs, transmission, response_times)
+            transmission = Transmission(reader, som, declarative)
+            walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative, derived)
             entries = []
             for name, flow, elements in specs:
-                if flow is not None and not som.active(flow):
+                if flow is not None and not flow_active(flow, elements, som, declarative):
                     continue
                 entries.append((name, flow, elements, walk.contributors(elements)))
             if transmission.waiting and not prefs.revision.startswith("2014"):
@@ -360,7 +388,7 @@ def _entry(
     chain = LatencyChain(
         name,
         _threads(elements),
-        _hops(rows, prefs.revision),
+        _hops(rows, prefs.revision, prefs.major_frame),
         best,
         worst,
         expected_worst or None,

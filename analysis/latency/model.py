@@ -54,13 +54,18 @@ METHOD_WORDS = {
 REVISIONS = ("current", "2018", "2014", "2014-early")
 
 
-def method_word(method: str, revision: str = "current") -> str:
+def method_word(method: str, revision: str = "current", major_frame: bool = True) -> str:
     """OSATE's word for a contributor method in a revision of its rules: an unknown method was
-    ``no latency`` until July 2019, a partition window ``partition schedule`` in 2014."""
+    ``no latency`` until July 2019, a partition window ``partition schedule`` in 2014; a
+    partition output names the preference that placed it (``LatencyContributor
+    .mapMethodToString``: ``partition output (MF)`` at the major frame, ``(PE)`` at the
+    partition end, since September 2014)."""
     if method == "unknown" and revision != "current":
         return "no latency"
     if method == "partition_schedule" and revision.startswith("2014"):
         return "partition schedule"
+    if method == "partition_output":
+        return f"{METHOD_WORDS[method]} ({'MF' if major_frame else 'PE'})"
     return METHOD_WORDS[method]
 
 
