@@ -75,6 +75,10 @@ _RESERVED_MEMBERS = frozenset(
         "payload",
         "twin",
         "twin_publishing",
+        "twin_calls",
+        "twin_call",
+        "twin_waiting",
+        "tracer",
         "take_priority",
         "scheduling",
         "started_scheduling",
@@ -179,6 +183,7 @@ class ThreadPlan:
     container: bool = False  # a thread group's (or the process's) own ports, no thread of its own
     dispatch_inferred: bool = False
     twin_outputs: list[PortPlan] = field(default_factory=list)  # what its emulated dispatch publishes
+    twin_calls: list[ServicePlan] = field(default_factory=list)  # the services its emulated dispatch calls
 
     @property
     def sched_policy(self) -> str:
@@ -790,6 +795,7 @@ class NodeBuilder:
             "sys",
             "threading",
             "force_exit",
+            "wait_loop_at_normal_priority",
             "time",
             "deque",
             "main",

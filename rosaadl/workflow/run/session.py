@@ -53,6 +53,7 @@ __all__ = [
     "NodeResult",
     "TopicResult",
     "RunResult",
+    "expects_messages",
     "prepare_run",
     "run_application",
 ]
@@ -392,6 +393,14 @@ def _node_results(result: RunResult, processes: list[NodeProcess], options: RunO
             )
 
 
+def expects_messages(model_rate_hz: float | None, duration: float) -> bool:
+    """Whether a topic published at ``model_rate_hz`` (None: not known) carries a message within
+    ``duration`` seconds: a ROS 2 timer first fires one period after it is made, so a thread
+    whose period is longer than the run sends nothing in it (ROSMOD's long-running operations,
+    a timer of minutes).  An unknown rate is taken to give messages."""
+    return model_rate_hz is None or model_rate_hz * duration >= 1.0
+
+
 def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, options: RunOptions) -> None:
     for topic in topics:
         entry = counts.get(topic.name, {})
@@ -419,7 +428,16 @@ def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, opt
             )
             continue
         if messages == 0:
-            if options.emulate:
+            if options.emulate and not expects_messages(topic.model_rate_hz, options.duration):
+                result.warnings.append(
+                    _diagnostic(
+                        "warning",
+                        f"{where}: no message in {options.duration:g} s, none expected: its modelled "
+                        f"rate of {topic.model_rate_hz:g} Hz gives its first message after "
+                        f"{1 / topic.model_rate_hz:.3g} s (a longer --duration measures it)",
+                    )
+                )
+            elif options.emulate:
                 result.errors.append(
                     _diagnostic(
                         "error",
