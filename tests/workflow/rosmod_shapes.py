@@ -3,9 +3,10 @@
 sent from its service callback (the AGSE image processor, pub_sub_traffic_gen's sender), its
 client in another component of the same process (several components, so several threads, per
 node: a MultiThreadedExecutor under ``SCHED_FIFO``), two more nodes listening to both topics (as
-many busy real-time nodes as a 2-CPU machine has CPUs, besides the first), and a timer whose
-period is longer than any run (long-running-operation's 120 s timer).  Written into a folder by
-:func:`write_project`."""
+many busy real-time nodes as a 2-CPU machine has CPUs, besides the first), a component with a
+publisher and nothing else in a node of its own (routing's and tg_test's senders: no thread, no
+timer), and a timer whose period is longer than any run (long-running-operation's 120 s timer).
+Written into a folder by :func:`write_project`."""
 
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ ROOT = "relay_deployment::relay.impl"
 CALL_PERIOD = 0.05
 
 _SOFTWARE = """\
-// A caller on a timer, an answerer with no timer, a sleeper on a timer of ten minutes.
+// A caller on a timer, an answerer with no timer, listeners, a beacon with no callback, a sleeper
+// on a timer of ten minutes.
 package relay
 {
   component caller : Base
@@ -54,6 +56,15 @@ package relay
       priority = 50;
       deadline = 0.05;
     }
+    subscriber <relay/signal> signal_sub
+    {
+      priority = 50;
+      deadline = 0.05;
+    }
+  }
+  component beacon : Base
+  {
+    publisher <relay/signal> signal_pub;
   }
   component sleeper : Base
   {
@@ -103,6 +114,7 @@ _DEPLOYMENT = (
     "using bench;\n"
     + _node("both", ("caller_i", "caller"), ("answerer_i", "answerer"))
     + "".join(_node(f"ear_{n}", ("listener_i", "listener")) for n in (1, 2))
+    + _node("beacon", ("beacon_i", "beacon"))
     + _node("slow", ("sleeper_i", "sleeper"))
 )
 
@@ -113,6 +125,7 @@ PROJECT_FILES = {
     "01-Software/msg/relay.tick.msg": "uint8[] data\n",
     "01-Software/msg/relay.answer.msg": "uint8[] data\n",
     "01-Software/msg/relay.nap.msg": "uint8[] data\n",
+    "01-Software/msg/relay.signal.msg": "uint8[] data\n",
     "01-Software/srv/relay.poke.srv": "int32 ask\n---\nint32 answer\n",
     "02-Hardware/bench.rhw": _HARDWARE,
     "03-Deployment/relay.rdp": _DEPLOYMENT,

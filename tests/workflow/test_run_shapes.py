@@ -113,4 +113,21 @@ def test_a_timer_slower_than_the_run_is_no_missing_message(relay):
     rate = {t.name: t.model_rate_hz for t in plan.topics}["/sleeper_i/nap_pub"]
     assert rate == pytest.approx(1 / 600, rel=1e-3)
     assert not expects_messages(rate, 8.0)
-    assert expects_messages(rate, 600.0) and expects_messages(2.0, 8.0) and expects_messages(None, 8.0)
+    assert expects_messages(rate, 600.0) and expects_messages(2.0, 8.0)
+
+
+def test_a_node_with_no_thread_publishes_where_its_subscribers_listen(relay):
+    """The beacon's process has no thread (its component has a publisher only): its node uses the
+    process's port, which the connection only passes (it runs from the thread group's port
+    inside).  The port is remapped to the topic the listeners subscribe to; it was left on its
+    relative name, a topic of its own nobody listened to (routing: the sinks heard nothing)."""
+    _, result, plan = relay
+    nodes = {n.node_name: n for n in result.plan.nodes}
+    [(local, topic)] = nodes["beacon"].remappings
+    assert local == "beacon_i_signal_pub"
+    listening = {target for n in ("ear_1", "ear_2") for _, target in nodes[n].remappings}
+    assert topic in listening
+    [signal] = [t for t in plan.topics if t.name == topic]
+    assert signal.publishers == ["/beacon"] and signal.subscribers == ["/ear_1", "/ear_2"]
+    # nothing of the model dispatches the beacon: no rate, and none expected from the twin
+    assert signal.model_rate_hz is None and not expects_messages(None, 8.0)

@@ -394,11 +394,14 @@ def _node_results(result: RunResult, processes: list[NodeProcess], options: RunO
 
 
 def expects_messages(model_rate_hz: float | None, duration: float) -> bool:
-    """Whether a topic published at ``model_rate_hz`` (None: not known) carries a message within
-    ``duration`` seconds: a ROS 2 timer first fires one period after it is made, so a thread
-    whose period is longer than the run sends nothing in it (ROSMOD's long-running operations,
-    a timer of minutes).  An unknown rate is taken to give messages."""
-    return model_rate_hz is None or model_rate_hz * duration >= 1.0
+    """Whether the workload twin sends a message on a topic of modelled rate ``model_rate_hz`` within
+    ``duration`` seconds.  A ROS 2 timer first fires one period after it is made, so a thread whose
+    period is longer than the run sends nothing in it (ROSMOD's long-running operations, a timer
+    of minutes).  A topic with no modelled rate gets nothing from the twin: no timer of the model
+    dispatches its publishers (a ROSMOD component with no timer publishing from a subscriber
+    callback fed from outside or from a cycle, a component with publishers only), and only user
+    code would publish on it."""
+    return model_rate_hz is not None and model_rate_hz * duration >= 1.0
 
 
 def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, options: RunOptions) -> None:
@@ -428,7 +431,15 @@ def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, opt
             )
             continue
         if messages == 0:
-            if options.emulate and not expects_messages(topic.model_rate_hz, options.duration):
+            if options.emulate and expects_messages(topic.model_rate_hz, options.duration):
+                result.errors.append(
+                    _diagnostic(
+                        "error",
+                        f"{where}: no message in {options.duration:g} s (published by "
+                        f"{', '.join(topic.publishers)})",
+                    )
+                )
+            elif options.emulate and topic.model_rate_hz:
                 result.warnings.append(
                     _diagnostic(
                         "warning",
@@ -438,11 +449,13 @@ def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, opt
                     )
                 )
             elif options.emulate:
-                result.errors.append(
+                result.warnings.append(
                     _diagnostic(
-                        "error",
-                        f"{where}: no message in {options.duration:g} s (published by "
-                        f"{', '.join(topic.publishers)})",
+                        "warning",
+                        f"{where}: no message in {options.duration:g} s, none expected: no timer of "
+                        "the model dispatches its publishers (only messages from outside the model or "
+                        "from a cycle of topics, or calls nobody in the model makes), so the workload "
+                        "twin sends nothing on it",
                     )
                 )
             continue
