@@ -691,6 +691,15 @@ class NodeBuilder:
                 f"{plan.ident}.period at start-up",
                 thread,
             )
+        elif plan.timer == "periodic" and plan.period <= 0:
+            # ROSMOD's timer of period 0 (the textual `timer` project's sporadic_timer): a timer the
+            # component's own code starts; a timer of period 0 would refuse to start the node.
+            self._warn(
+                f"thread {plan.name!r} has Period {plan.period_text or '0'}: no timer is made for it, "
+                "nothing in the model dispatches it (its user code may make one)",
+                thread,
+            )
+            plan.timer = None
 
     # ------------------------------------------------------------------ callback groups
 

@@ -5,7 +5,8 @@ client in another component of the same process (several components, so several 
 node: a MultiThreadedExecutor under ``SCHED_FIFO``), two more nodes listening to both topics (as
 many busy real-time nodes as a 2-CPU machine has CPUs, besides the first), a component with a
 publisher and nothing else in a node of its own (routing's and tg_test's senders: no thread, no
-timer), and a timer whose period is longer than any run (long-running-operation's 120 s timer).
+timer), a timer whose period is longer than any run (long-running-operation's 120 s timer) and
+one of period 0 (the `timer` project's sporadic timer, which the component's code would start).
 Written into a folder by :func:`write_project`."""
 
 from __future__ import annotations
@@ -71,6 +72,12 @@ package relay
     timer nap_timer
     {
       period = 600.0;
+      priority = 50;
+      deadline = 1.0;
+    }
+    timer spare_timer
+    {
+      period = 0.0;
       priority = 50;
       deadline = 1.0;
     }

@@ -131,3 +131,16 @@ def test_a_node_with_no_thread_publishes_where_its_subscribers_listen(relay):
     assert signal.publishers == ["/beacon"] and signal.subscribers == ["/ear_1", "/ear_2"]
     # nothing of the model dispatches the beacon: no rate, and none expected from the twin
     assert signal.model_rate_hz is None and not expects_messages(None, 8.0)
+
+
+def test_a_timer_of_period_0_is_made_no_timer(relay):
+    """ROSMOD's timer of period 0 (a timer the component's own code starts) gets no timer: a timer
+    thread without a period refused to start its node (the ``timer`` project's node exited 1)."""
+    src, result, plan = relay
+    [slow] = [c for c in result.plan.classes if c.node_name == "slow"]
+    spare = next(t for t in slow.threads if t.ident.endswith("spare_timer"))
+    assert spare.timer is None and not spare.dispatches
+    assert any("spare_timer" in d.message and "Period" in d.message for d in result.diagnostics)
+    init = ast.unparse(_function(_module(src, result, "slow"), "__init__"))
+    assert init.count("self.create_timer(") == 1
+    assert [n.timers for n in plan.nodes if n.name == "slow"] == [["sleeper_i_nap_timer"]]
