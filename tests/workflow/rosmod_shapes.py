@@ -11,9 +11,11 @@ Written into a folder by :func:`write_project`."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
-__all__ = ["PROJECT_FILES", "ROOT", "CALL_PERIOD", "write_project"]
+__all__ = ["PROJECT_FILES", "ROOT", "CALL_PERIOD", "write_project", "converted_project"]
 
 #: The deployment to run (its system implementation once converted to AADL).
 ROOT = "relay_deployment::relay.impl"
@@ -146,3 +148,17 @@ def write_project(folder: Path) -> Path:
         target.parent.mkdir(parents=True, exist_ok=True)
         target.write_text(text, encoding="utf-8")
     return folder
+
+
+def converted_project(folder: Path) -> Path:
+    """Write the project into ``folder/project`` and convert it to AADL (``rosaadl convert``) into
+    ``folder/aadl``; return the AADL folder."""
+    project = write_project(folder / "project")
+    done = subprocess.run(
+        [sys.executable, "-m", "rosaadl", "-q", "convert", str(project), "-o", str(folder / "aadl")],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    return folder / "aadl"

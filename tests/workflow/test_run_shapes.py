@@ -12,7 +12,7 @@ import subprocess
 import sys
 
 import pytest
-from rosmod_shapes import CALL_PERIOD, ROOT, write_project
+from rosmod_shapes import CALL_PERIOD, ROOT, converted_project
 
 from rosaadl.exporters.rclpy import GenerationOptions, generate_workspace
 from rosaadl.importers.aadl_text import read_files
@@ -25,15 +25,8 @@ from rosaadl.workflow.run.session import expects_messages
 def relay(tmp_path_factory):
     """(the generated packages' folder, the generation result, the run plan) of the project."""
     folder = tmp_path_factory.mktemp("relay")
-    project = write_project(folder / "project")
-    done = subprocess.run(
-        [sys.executable, "-m", "rosaadl", "-q", "convert", str(project), "-o", str(folder / "aadl")],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
-    instance = instantiate(read_files([folder / "aadl"]), ROOT)
+    aadl = converted_project(folder)
+    instance = instantiate(read_files([aadl]), ROOT)
     result = generate_workspace(instance, folder / "src", options=GenerationOptions(year=2024))
     return folder / "src", result, run_plan(result.plan)
 

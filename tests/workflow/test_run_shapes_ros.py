@@ -14,7 +14,7 @@ import sys
 
 import pytest
 from ros_runtime import runtime_marks
-from rosmod_shapes import CALL_PERIOD, ROOT, write_project
+from rosmod_shapes import CALL_PERIOD, ROOT, converted_project
 
 pytestmark = [*runtime_marks(), pytest.mark.slow]
 
@@ -25,15 +25,8 @@ DURATION = 4
 def report(tmp_path_factory):
     """(exit code, JSON report, stderr) of the run."""
     folder = tmp_path_factory.mktemp("relay")
-    project = write_project(folder / "project")
-    done = subprocess.run(
-        [sys.executable, "-m", "rosaadl", "-q", "convert", str(project), "-o", str(folder / "aadl")],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
-    command = ["run", str(folder / "aadl"), "--root", ROOT, "--duration", str(DURATION), "--emulate"]
+    aadl = converted_project(folder)
+    command = ["run", str(aadl), "--root", ROOT, "--duration", str(DURATION), "--emulate"]
     done = subprocess.run(
         [sys.executable, "-m", "rosaadl", "--format", "json", *command, "-o", str(folder / "run")],
         capture_output=True,
