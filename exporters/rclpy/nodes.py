@@ -176,6 +176,7 @@ class ThreadPlan:
     ports: list[PortPlan] = field(default_factory=list)
     services: list[ServicePlan] = field(default_factory=list)
     timer: str | None = None  # "periodic" | "oneshot" | None
+    dormant: bool = False  # a periodic timer of Period 0: made cancelled, for the user code to start
     timer_attr: str = ""
     callback: str = ""
     marker: str = ""
@@ -695,11 +696,11 @@ class NodeBuilder:
             # ROSMOD's timer of period 0 (the textual `timer` project's sporadic_timer): a timer the
             # component's own code starts; a timer of period 0 would refuse to start the node.
             self._warn(
-                f"thread {plan.name!r} has Period {plan.period_text or '0'}: no timer is made for it, "
-                "nothing in the model dispatches it (its user code may make one)",
+                f"thread {plan.name!r} has Period {plan.period_text or '0'}: its timer is made "
+                "cancelled (its user code may start it), nothing in the model dispatches it",
                 thread,
             )
-            plan.timer = None
+            plan.dormant = True
 
     # ------------------------------------------------------------------ callback groups
 

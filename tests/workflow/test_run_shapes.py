@@ -126,14 +126,19 @@ def test_a_node_with_no_thread_publishes_where_its_subscribers_listen(relay):
     assert signal.model_rate_hz is None and not expects_messages(None, 8.0)
 
 
-def test_a_timer_of_period_0_is_made_no_timer(relay):
-    """ROSMOD's timer of period 0 (a timer the component's own code starts) gets no timer: a timer
-    thread without a period refused to start its node (the ``timer`` project's node exited 1)."""
+def test_a_timer_of_period_0_is_made_cancelled(relay):
+    """ROSMOD's timer of period 0 (a timer the component's own code starts) is made cancelled, and
+    ``start_timers`` leaves it so: a timer thread without a period refused to start its node (the
+    ``timer`` project's node exited 1)."""
     src, result, plan = relay
     [slow] = [c for c in result.plan.classes if c.node_name == "slow"]
     spare = next(t for t in slow.threads if t.ident.endswith("spare_timer"))
-    assert spare.timer is None and not spare.dispatches
+    assert spare.timer == "periodic" and spare.dormant
     assert any("spare_timer" in d.message and "Period" in d.message for d in result.diagnostics)
-    init = ast.unparse(_function(_module(src, result, "slow"), "__init__"))
-    assert init.count("self.create_timer(") == 1
-    assert [n.timers for n in plan.nodes if n.name == "slow"] == [["sleeper_i_nap_timer"]]
+    module = _module(src, result, "slow")
+    init = ast.unparse(_function(module, "__init__"))
+    assert "self.period_of('sleeper_i_spare_timer', dormant=True)" in init
+    assert "self.timer_sleeper_i_spare_timer.cancel()" in init
+    assert "is_canceled()" in ast.unparse(_function(module, "start_timers"))
+    rates = {t.name: t.model_rate_hz for t in plan.topics}
+    assert rates["/sleeper_i/nap_pub"] == pytest.approx(1 / 600, rel=1e-3)
