@@ -806,6 +806,7 @@ class NodeBuilder:
             "threading",
             "force_exit",
             "wait_loop_at_normal_priority",
+            "restore_scheduling",
             "time",
             "deque",
             "main",

@@ -82,6 +82,8 @@ def test_the_executor_wait_loop_leaves_the_real_time_priority_to_the_callbacks(r
     module = _module(src, result, "both")
     calls = [ast.unparse(n.func) for n in ast.walk(_function(module, "main")) if isinstance(n, ast.Call)]
     assert calls.index("wait_loop_at_normal_priority") < calls.index("executor.spin")
+    # the teardown (and its watchdog) runs at the node's priority again
+    assert calls.index("restore_scheduling") < calls.index("threading.Timer")
     chrt = shutil.which("chrt")
     if chrt is None or subprocess.run([chrt, "-f", "1", "true"], capture_output=True).returncode != 0:
         pytest.skip("chrt -f is not permitted here: the policy change itself is not run")
@@ -91,12 +93,15 @@ def test_the_executor_wait_loop_leaves_the_real_time_priority_to_the_callbacks(r
             "import os",
             function,
             "assert os.sched_getscheduler(0) == os.SCHED_FIFO",
-            "wait_loop_at_normal_priority()",
+            ast.unparse(_function(module, "restore_scheduling")),
+            "started = wait_loop_at_normal_priority()",
             "print(os.sched_getscheduler(0) == os.SCHED_OTHER)",
+            "restore_scheduling(started)",
+            "print(os.sched_getscheduler(0) == os.SCHED_FIFO)",
         ]
     )
     done = subprocess.run([chrt, "-f", "1", sys.executable, "-c", probe], capture_output=True, text=True)
-    assert done.stdout.strip() == "True", done.stderr
+    assert done.stdout.split() == ["True", "True"], done.stderr
 
 
 def test_a_timer_slower_than_the_run_is_no_missing_message(relay):
