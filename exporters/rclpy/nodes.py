@@ -75,6 +75,10 @@ _RESERVED_MEMBERS = frozenset(
         "payload",
         "twin",
         "twin_publishing",
+        "twin_calls",
+        "twin_call",
+        "twin_waiting",
+        "tracer",
         "take_priority",
         "scheduling",
         "started_scheduling",
@@ -172,6 +176,7 @@ class ThreadPlan:
     ports: list[PortPlan] = field(default_factory=list)
     services: list[ServicePlan] = field(default_factory=list)
     timer: str | None = None  # "periodic" | "oneshot" | None
+    dormant: bool = False  # a periodic timer of Period 0: made cancelled, for the user code to start
     timer_attr: str = ""
     callback: str = ""
     marker: str = ""
@@ -179,6 +184,7 @@ class ThreadPlan:
     container: bool = False  # a thread group's (or the process's) own ports, no thread of its own
     dispatch_inferred: bool = False
     twin_outputs: list[PortPlan] = field(default_factory=list)  # what its emulated dispatch publishes
+    twin_calls: list[ServicePlan] = field(default_factory=list)  # the services its emulated dispatch calls
 
     @property
     def sched_policy(self) -> str:
@@ -686,6 +692,15 @@ class NodeBuilder:
                 f"{plan.ident}.period at start-up",
                 thread,
             )
+        elif plan.timer == "periodic" and plan.period <= 0:
+            # ROSMOD's timer of period 0 (the textual `timer` project's sporadic_timer): a timer the
+            # component's own code starts; a timer of period 0 would refuse to start the node.
+            self._warn(
+                f"thread {plan.name!r} has Period {plan.period_text or '0'}: its timer is made "
+                "cancelled (its user code may start it), nothing in the model dispatches it",
+                thread,
+            )
+            plan.dormant = True
 
     # ------------------------------------------------------------------ callback groups
 
@@ -790,6 +805,8 @@ class NodeBuilder:
             "sys",
             "threading",
             "force_exit",
+            "wait_loop_at_normal_priority",
+            "restore_scheduling",
             "time",
             "deque",
             "main",

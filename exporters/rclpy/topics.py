@@ -202,6 +202,11 @@ class Topology:
         Returns ``id(feature) -> Group``.  ``node_names`` maps ``id(process)`` to its ROS node name,
         for derived names.
         """
+        features = list(features)
+        for feature in features:  # a process port the connection only passes (see _end_through)
+            end = None if self.is_end(feature) else self._end_through(feature)
+            if end is not None:
+                self._uf.union(self._remember(end), self._remember(feature))
         by_root: dict[int, Group] = {}
         order: list[Group] = []
         result: dict[int, Group] = {}
@@ -223,6 +228,27 @@ class Topology:
                 group.connections.append(conn)
         self._name_groups(order, node_names)
         return result
+
+    def _end_through(self, feature: EObject) -> EObject | None:
+        """The nearest end of a connection instance that passes ``feature`` (None: none passes it).
+
+        A node's implicit thread (a process with no thread, e.g. a ROSMOD component with only
+        publishers, a thread group of ports) uses the process's own ports, which its connections
+        only pass: they run from the thread group's ports inside.  Such a port belongs to the
+        topic of the connection passing it, so its node publishes where the subscribers listen.
+        """
+        seen = {id(feature)}
+        frontier = [feature]
+        while frontier:
+            current = frontier.pop(0)
+            for other in self._outward.get(id(current), ()):
+                if id(other) in seen:
+                    continue
+                if self.is_end(other):
+                    return other
+                seen.add(id(other))
+                frontier.append(other)
+        return None
 
     # ------------------------------------------------------------------ naming
 

@@ -14,6 +14,13 @@ publishers) are sent by one thread of the component: the first periodic thread o
 group, else its first dispatching thread (the model does not say which callback of a ROSMOD
 component publishes).
 
+Each emulated dispatch also calls the services the thread requires (its own required subprogram
+accesses, and those of the component it sends for, as above) with a default request, through the
+generated ``call_…`` method, when the service is up and the previous call of that client has been
+answered: the servers' dispatches then run, and publish in turn, as in the model (a ROSMOD
+component with no timer whose publishers are sent from its service callbacks; without the calls
+nothing would ever dispatch it).
+
 The twin's call is the last line of each dispatch's generated skeleton, inside its user block:
 a user who writes the callback replaces it.  A block kept from a generator without the twin
 (the skeleton less that line) takes the new skeleton when regenerated.
@@ -41,16 +48,18 @@ def sender_of(container: ThreadPlan, threads: list[ThreadPlan]) -> ThreadPlan | 
 
 
 def assign_twin_outputs(cls: NodeClass) -> None:
-    """Fill ``twin_outputs`` of every dispatching thread of ``cls``: its own out ports, then the
-    out ports of the components it sends for (see :func:`sender_of`)."""
+    """Fill ``twin_outputs`` and ``twin_calls`` of every dispatching thread of ``cls``: its own out
+    ports and clients, then those of the components it sends for (see :func:`sender_of`)."""
     for thread in cls.threads:
         if thread.dispatches:
             thread.twin_outputs = list(thread.outputs)
+            thread.twin_calls = list(thread.clients)
     for container in cls.threads:
-        if container.container and container.outputs:
+        if container.container and (container.outputs or container.clients):
             sender = sender_of(container, cls.threads)
             if sender is not None:
                 sender.twin_outputs.extend(container.outputs)
+                sender.twin_calls.extend(container.clients)
 
 
 def payload_note(port: PortPlan) -> str:

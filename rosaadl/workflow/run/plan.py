@@ -12,10 +12,15 @@ it: its own out ports, and those of its thread group or process it is the sender
 :mod:`rosaadl.exporters.rclpy.twin`):
 a thread on a periodic timer (``Periodic``, ``Timed``, ``Hybrid``) is dispatched ``1 / period``
 times a second (its ``<thread>.period`` parameter), plus once per message on each in port that
-dispatches it (``Sporadic``, ``Aperiodic``, and the event ports of ``Timed``/``Hybrid``). The
-rates are propagated along the topics until they settle; a rate that depends on a service
-call, on a timer thread with no period, or on a cycle of topics is unknown (``None``). A topic no node
-of the model publishes on is an input from outside the model: its rate is unknown.
+dispatches it (``Sporadic``, ``Aperiodic``, and the event ports of ``Timed``/``Hybrid``), plus
+once per call of each service it provides: the twin's dispatches call the services their thread
+requires (its own required subprogram accesses and those of the component it sends for, one
+unanswered call per client at most), so a server thread is dispatched as often as the threads
+calling it are (a ROSMOD component with no timer, publishing from its service callbacks). The
+rates are propagated along the topics and service calls until they settle; a rate that depends on
+a timer thread with no period or on a cycle is unknown (``None``), and so is one no dispatch of the
+model gives (a service nobody in the model calls). A topic no node of the model publishes on is an
+input from outside the model: its rate is unknown.
 
 The plan is saved in the run folder (:data:`PLAN_FILE`), so that a run folder can be run again
 (after editing the user code of its packages) without the model.
@@ -143,6 +148,9 @@ def run_plan(plan: WorkspacePlan) -> RunPlan:
     # (topic, node, thread) triples: who publishes what, and which topics dispatch which thread
     out_ends: list[tuple[str, NodeInstance, str]] = []
     triggers: dict[tuple[int, str], list[str]] = {}
+    # (service, node, thread): who calls what; thread -> the services it serves
+    calls: list[tuple[str, NodeInstance, str]] = []
+    served: dict[tuple[int, str], list[str]] = {}
     for node in plan.nodes:
         result.nodes.append(
             NodeLaunch(
@@ -181,7 +189,13 @@ def run_plan(plan: WorkspacePlan) -> RunPlan:
                 for port in thread.twin_outputs:
                     name = resolve_name(remapped.get(port.local, port.local), node.namespace, node.node_name)
                     out_ends.append((name, node, thread.ident))
-    rates = _settled_rates(plan, topics, out_ends, triggers)
+                for srv in thread.twin_calls:  # and the services it calls
+                    name = resolve_name(remapped.get(srv.local, srv.local), node.namespace, node.node_name)
+                    calls.append((name, node, thread.ident))
+                for srv in thread.servers:
+                    name = resolve_name(remapped.get(srv.local, srv.local), node.namespace, node.node_name)
+                    served.setdefault((id(node), thread.ident), []).append(name)
+    rates = _settled_rates(plan, topics, out_ends, triggers, (calls, served))
     for name, topic in topics.items():
         topic.model_rate_hz = rates.get(name)
     result.topics = sorted(topics.values(), key=lambda t: t.name)
@@ -193,31 +207,41 @@ def _settled_rates(
     topics: dict[str, TopicPlan],
     out_ends: list[tuple[str, NodeInstance, str]],
     triggers: dict[tuple[int, str], list[str]],
+    services: tuple[list[tuple[str, NodeInstance, str]], dict[tuple[int, str], list[str]]] = ([], {}),
 ) -> dict[str, float | None]:
-    """Topic rates propagated through the dispatching in ports until they no longer change."""
+    """Topic rates propagated through the dispatching in ports and the service calls (``services``:
+    the (service, node, thread) calls and, per thread, the services it serves) until they no
+    longer change."""
     threads = {(id(n), t.ident): (n, t) for n in plan.nodes for t in n.cls.threads if t.dispatches}
     rates: dict[str, float | None] = {name: None for name in topics}
     published = {name for name, _, _ in out_ends}
+    calls, served = services
+    callers: dict[str, list[tuple[int, str]]] = {}
+    for name, node, thread_ident in calls:
+        callers.setdefault(name, []).append((id(node), thread_ident))
+    previous: dict[tuple[int, str], float | None] = {ident: None for ident in threads}
     for _ in range(_SETTLE_PASSES):
         thread_rates: dict[tuple[int, str], float | None] = {}
         for ident, (node, thread) in threads.items():
             rate: float | None = 0.0
             if thread.timer == "periodic":
                 rate = _frequency(node, thread.ident)
-            elif thread.timer is None and thread.servers and not triggers.get(ident):
-                rate = None  # dispatched by service calls only
             for name in triggers.get(ident, []):
                 incoming = rates.get(name) if name in published else 0.0
                 rate = None if rate is None or incoming is None else rate + incoming
+            for name in served.get(ident, []):
+                for caller in callers.get(name, []):
+                    incoming = previous.get(caller)
+                    rate = None if rate is None or incoming is None else rate + incoming
             thread_rates[ident] = rate
         new: dict[str, float | None] = {name: (0.0 if name in published else None) for name in topics}
         for name, node, thread_ident in out_ends:
             rate = thread_rates.get((id(node), thread_ident))
             current = new[name]
             new[name] = None if rate is None or current is None else current + rate
-        if new == rates:
+        if new == rates and thread_rates == previous:
             break
-        rates = new
+        rates, previous = new, thread_rates
     else:  # a cycle that never settles: its rates are not known
         return {name: None for name in topics}
     return {name: (round(rate, 6) if rate else None) for name, rate in rates.items()}

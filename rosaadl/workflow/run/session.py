@@ -53,6 +53,7 @@ __all__ = [
     "NodeResult",
     "TopicResult",
     "RunResult",
+    "expects_messages",
     "prepare_run",
     "run_application",
 ]
@@ -392,6 +393,17 @@ def _node_results(result: RunResult, processes: list[NodeProcess], options: RunO
             )
 
 
+def expects_messages(model_rate_hz: float | None, duration: float) -> bool:
+    """Whether the workload twin sends a message on a topic of modelled rate ``model_rate_hz`` within
+    ``duration`` seconds.  A ROS 2 timer first fires one period after it is made, so a thread whose
+    period is longer than the run sends nothing in it (ROSMOD's long-running operations, a timer
+    of minutes).  A topic with no modelled rate gets nothing from the twin: no timer of the model
+    dispatches its publishers (a ROSMOD component with no timer publishing from a subscriber
+    callback fed from outside or from a cycle, a component with publishers only), and only user
+    code would publish on it."""
+    return model_rate_hz is not None and model_rate_hz * duration >= 1.0
+
+
 def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, options: RunOptions) -> None:
     for topic in topics:
         entry = counts.get(topic.name, {})
@@ -419,12 +431,31 @@ def _topic_results(result: RunResult, topics: list[TopicPlan], counts: dict, opt
             )
             continue
         if messages == 0:
-            if options.emulate:
+            if options.emulate and expects_messages(topic.model_rate_hz, options.duration):
                 result.errors.append(
                     _diagnostic(
                         "error",
                         f"{where}: no message in {options.duration:g} s (published by "
                         f"{', '.join(topic.publishers)})",
+                    )
+                )
+            elif options.emulate and topic.model_rate_hz:
+                result.warnings.append(
+                    _diagnostic(
+                        "warning",
+                        f"{where}: no message in {options.duration:g} s, none expected: its modelled "
+                        f"rate of {topic.model_rate_hz:g} Hz gives its first message after "
+                        f"{1 / topic.model_rate_hz:.3g} s (a longer --duration measures it)",
+                    )
+                )
+            elif options.emulate:
+                result.warnings.append(
+                    _diagnostic(
+                        "warning",
+                        f"{where}: no message in {options.duration:g} s, none expected: no timer of "
+                        "the model dispatches its publishers (only messages from outside the model or "
+                        "from a cycle of topics, or calls nobody in the model makes), so the workload "
+                        "twin sends nothing on it",
                     )
                 )
             continue
