@@ -3,8 +3,9 @@
 Each component gets the flow specifications of its classifier (source, sink or path, with their
 feature instance ends). An end-to-end flow of an implementation becomes the list of instance
 objects it goes through: subcomponents, the flow specifications of the subcomponents (through
-their flow implementations, as deep as they go), and for each run of declared connections the
-semantic connection instance that goes through them.
+their flow implementations, as deep as they go), for each run of declared connections the
+semantic connection instance that goes through them, and for a data or subprogram access feature
+the component it gives access to (with the connection instances to it and back from it).
 """
 
 from __future__ import annotations
