@@ -3,12 +3,14 @@
 Each component gets the flow specifications of its classifier (source, sink or path, with their
 feature instance ends). An end-to-end flow of an implementation becomes the list of instance
 objects it goes through: subcomponents, the flow specifications of the subcomponents (through
-their flow implementations, as deep as they go), and for each run of declared connections the
-semantic connection instance that goes through them.
+their flow implementations, as deep as they go), for each run of declared connections the
+semantic connection instance that goes through them, and for a data or subprogram access feature
+the component it gives access to (with the connection instances to it and back from it).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from pyecore.ecore import EObject
@@ -16,7 +18,7 @@ from pyecore.ecore import EObject
 from rosaadl.resolution import split_path
 
 from .declared import declared_connections
-from .mirrors import ComponentMirror, FeatureMirror, enum_name
+from .mirrors import ComponentMirror, ConnectionRecord, FeatureMirror, enum_name
 
 if TYPE_CHECKING:
     from .instantiator import Instantiator
@@ -104,10 +106,13 @@ def _pieces(
 ) -> list:
     """The elements named by ``texts`` in ``ci`` (an end-to-end flow's, else a flow
     implementation's): ``sub.spec`` through a subcomponent, a subcomponent's instance object,
-    ``("conn", declaration, ci)`` for a declared connection (resolved later) and, in an
-    end-to-end flow, the elements of another end-to-end flow it names."""
+    ``("conn", declaration, ci)`` for a declared connection (resolved later),
+    ``("access", feature)`` for a data or subprogram access feature of ``ci`` the flow goes
+    through (also resolved later) and, in an end-to-end flow, the elements of another
+    end-to-end flow it names."""
     pieces: list[Any] = []
-    for text in texts:
+    last = len(texts) - 1
+    for position, text in enumerate(texts):
         segments = [s.key for s in split_path(text)]
         if not segments:
             continue
@@ -127,6 +132,11 @@ def _pieces(
         if child is not None:
             pieces.append(child.obj)
             continue
+        feature = ci.feature(name)
+        interior = end_to_end or 0 < position < last  # a flow implementation's ends are its own
+        if interior and feature is not None and feature.category in ("dataAccess", "subprogramAccess"):
+            pieces.append(("access", feature))
+            continue
         if end_to_end:
             other = next(
                 (f for f in st.resolver.end_to_end_flows(ci.node.impl) if (f.name or "").lower() == name),
@@ -140,38 +150,79 @@ def _pieces(
 def _resolve_flow_connections(st: Instantiator, pieces: list[Any]) -> list[Any]:
     """Replace each run of declared connections of a flow by the semantic connection instance
     that goes through all of them (the first one that does, else the one that goes through
-    the most of them)."""
-    result: list[Any] = []
-    run: list[tuple[EObject, ComponentMirror]] = []
+    the most of them).
 
-    def flush() -> None:
-        if not run:
-            return
-        wanted = [(id(decl), id(context)) for decl, context in run]
-        best = None
-        best_score = 0
-        for container in st.components:
-            for record in container.connections:
-                through = set(
-                    zip((id(d) for d in record.decls), (id(c) for c in record.contexts), strict=False)
-                )
-                score = sum(1 for item in wanted if item in through)
-                if score > best_score:
-                    best, best_score = record.obj, score
-                    if score == len(wanted):
-                        break
-            if best_score == len(wanted):
-                break
-        if best is not None:
-            result.append(best)
-        run.clear()
+    A data or subprogram access feature between two runs (OSATE's ``processAccess`` of
+    ``CreateEndToEndFlowsSwitch``) stands for the component it gives access to: the run before
+    it becomes the connection instance through that run that ends at a data or subprogram
+    component, followed by that component's instance; the run after it starts with the
+    declarations that connection instance crosses after the run's last one (in reverse: the
+    way back to the accessor goes through them again) before the flow's next connections.
+    """
+    result: list[Any] = []
+    run: list[tuple[int, int]] = []
+    carried: list[tuple[int, int]] = []  # hops an access hands on, if a connection follows
 
     for piece in pieces:
-        if isinstance(piece, tuple):
+        if isinstance(piece, tuple) and piece[0] == "conn":
             _, decl, context = piece
-            run.append((decl, context))
+            run.extend(carried)
+            carried = []
+            run.append((id(decl), id(context)))
             continue
-        flush()
+        carried = []
+        if isinstance(piece, tuple):  # ("access", feature): needs a run that reaches it
+            if not run:
+                continue
+            record = _best_record(st, run, _reaches_shared_component)
+            run_ends = set(run)
+            run.clear()
+            if record is None:
+                continue
+            result.extend([record.obj, record.dst.obj])
+            hops = _hops(record)
+            last = max((i for i, hop in enumerate(hops) if hop in run_ends), default=len(hops) - 1)
+            carried = list(reversed(hops[last + 1 :]))
+            continue
+        if run:
+            record = _best_record(st, run, None)
+            if record is not None:
+                result.append(record.obj)
+            run.clear()
         result.append(piece)
-    flush()
+    if run:
+        record = _best_record(st, run, None)
+        if record is not None:
+            result.append(record.obj)
     return result
+
+
+def _hops(record: ConnectionRecord) -> list[tuple[int, int]]:
+    """The (declaration, context) identities of the hops of a connection instance."""
+    return list(zip((id(d) for d in record.decls), (id(c) for c in record.contexts), strict=False))
+
+
+def _reaches_shared_component(record: ConnectionRecord) -> bool:
+    """Whether a connection instance ends at a data or subprogram component (the component an
+    access feature stands for in an end-to-end flow)."""
+    return isinstance(record.dst, ComponentMirror) and record.dst.category in ("data", "subprogram")
+
+
+def _best_record(
+    st: Instantiator, wanted: list[tuple[int, int]], accept: Callable[[ConnectionRecord], bool] | None
+) -> ConnectionRecord | None:
+    """The connection instance (among those ``accept`` takes) through all the hops ``wanted``,
+    the first one that is, else the first one through the most of them."""
+    best = None
+    best_score = 0
+    for container in st.components:
+        for record in container.connections:
+            if accept is not None and not accept(record):
+                continue
+            through = set(_hops(record))
+            score = sum(1 for item in wanted if item in through)
+            if score > best_score:
+                best, best_score = record, score
+                if score == len(wanted):
+                    return best
+    return best
