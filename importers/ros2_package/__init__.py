@@ -38,7 +38,7 @@ from rosaadl.importers.ros2_package.launching import (
     launch_actions,
     setup_cfg_entry_points,
 )
-from rosaadl.importers.ros2_package.node_classes import ModuleNodes, mark_assignments, read_module
+from rosaadl.importers.ros2_package.node_classes import ModuleNodes, read_module
 from rosaadl.importers.ros2_package.package_classes import abstract_classes, outside_classes, resolved_imports
 from rosaadl.importers.ros2_package.sources import (
     MAX_DEPTH,
@@ -48,6 +48,7 @@ from rosaadl.importers.ros2_package.sources import (
     read_manifest,
     read_text,
 )
+from rosaadl.importers.ros2_package.statements import mark_assignments
 
 __all__ = ["read_ros2_packages", "read_facts", "is_ros2_package_folder"]
 

@@ -27,6 +27,15 @@ from rosaadl.importers.ros2_package.evaluation import (
 )
 from rosaadl.importers.ros2_package.facts import NodeFact, PortFact, TimerFact
 from rosaadl.importers.ros2_package.qos import read_qos
+from rosaadl.importers.ros2_package.statements import (
+    assigned_attribute,
+    blocks_of,
+    calls_in,
+    cancels,
+    comprehended,
+    forget_changed,
+    mark_assignments,
+)
 
 __all__ = [
     "SCRIPT",
@@ -35,7 +44,6 @@ __all__ = [
     "OutsideClass",
     "read_module",
     "module_constants",
-    "mark_assignments",
     "keyword_argument",
     "dotted",
     "module_imports",
@@ -456,7 +464,7 @@ class _Reader:
                     names[name] = Known(UNKNOWN)
                 continue
             if isinstance(stmt, (ast.If, ast.With, ast.AsyncWith, ast.Try)):
-                for part, condition in _blocks(stmt):
+                for part, condition in blocks_of(stmt):
                     inner = (
                         under
                         if condition is None
@@ -470,8 +478,8 @@ class _Reader:
                 continue
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
                 continue
-            looped = _comprehended(stmt)
-            for call in _calls(stmt):
+            looped = comprehended(stmt)
+            for call in calls_in(stmt):
                 self.create(
                     call, current, fact, receivers, in_loop=in_loop or id(call) in looped, under=under
                 )
@@ -488,12 +496,12 @@ class _Reader:
                     names["self." + target.attr] = known
                     attributes["self." + target.attr] = known
                 else:
-                    _forget_changed(target, names)
+                    forget_changed(target, names)
             else:
                 for name in stored_names(stmt):
                     names[name] = Known(UNKNOWN)
                 for target in getattr(stmt, "targets", None) or [getattr(stmt, "target", None)]:
-                    _forget_changed(target, names)
+                    forget_changed(target, names)
 
     def create(
         self,
@@ -540,7 +548,7 @@ class _Reader:
         if "qos_profile" in names:
             qos = self.qos(_argument(call, names, "qos_profile"), scope, call)
         port = PortFact(kind, type_name, topic.value, self.at(call), qos, "", topic.parameter, topic.derived)
-        port.name = _assigned_attribute(call, self.tree) or ""
+        port.name = assigned_attribute(call, self.tree) or ""
         fact.ports.append(port)
 
     def timer(self, call: ast.Call, scope: Scope, fact: NodeFact, names: tuple[str, ...]) -> None:
@@ -552,11 +560,11 @@ class _Reader:
             parameter, derived = value.parameter, value.derived
             period = period_seconds(value.value)
         callback = _argument(call, names, "callback")
-        attribute = _assigned_attribute(call, self.tree, raw=True)
+        attribute = assigned_attribute(call, self.tree, raw=True)
         if (
             attribute
             and isinstance(callback, ast.Attribute)
-            and _cancels(scope.methods.get(callback.attr), attribute)
+            and cancels(scope.methods.get(callback.attr), attribute)
         ):
             self.warn(
                 f"one-shot timer {attribute} (its callback {callback.attr} cancels it): "
@@ -567,7 +575,7 @@ class _Reader:
         if period is None and not (isinstance(value, Known) and value.parameter):
             shown = ast.unparse(expr) if expr is not None else "nothing"
             self.warn(f"create_timer: the period {shown} is not known from the source", call)
-        name = _assigned_attribute(call, self.tree) or (
+        name = assigned_attribute(call, self.tree) or (
             callback.attr if isinstance(callback, ast.Attribute) else f"timer_{call.lineno}"
         )
         fact.timers.append(TimerFact(name, period, self.at(call), parameter, derived))
@@ -780,22 +788,6 @@ def _bind(
     }
 
 
-def _forget_changed(target: ast.expr | None, names: dict[str, Known]) -> None:
-    """``qos.depth = 1`` or ``self.qos.depth = 1`` changes what ``qos`` (``self.qos``) holds: no
-    longer known."""
-    while isinstance(target, (ast.Attribute, ast.Subscript)):
-        inner = target.value
-        if isinstance(inner, ast.Name):
-            names[inner.id] = Known(UNKNOWN)
-        elif (
-            isinstance(inner, ast.Attribute)
-            and isinstance(inner.value, ast.Name)
-            and inner.value.id == "self"
-        ):
-            names["self." + inner.attr] = Known(UNKNOWN)
-        target = inner
-
-
 def _single_assignments(
     function: ast.FunctionDef | ast.AsyncFunctionDef, reader: _Reader
 ) -> dict[str, Known]:
@@ -805,93 +797,6 @@ def _single_assignments(
     for name, expression in bound_once(function).items():
         names[name] = reader.value(expression, Scope({**reader.constants, **names}))
     return names
-
-
-def _assigned_attribute(call: ast.Call, tree: ast.Module, *, raw: bool = False) -> str | None:
-    """``x`` when ``call`` is assigned to ``self.x`` or ``x`` (the port's or timer's name in the
-    code, without leading and trailing underscores unless ``raw``)."""
-    parent = getattr(call, "_rosaadl_parent", None)
-    if isinstance(parent, ast.Assign) and len(parent.targets) == 1:
-        target = parent.targets[0]
-        name = (
-            target.attr
-            if isinstance(target, ast.Attribute)
-            else target.id
-            if isinstance(target, ast.Name)
-            else ""
-        )
-        return (name if raw else name.strip("_")) or None
-    return None
-
-
-def _cancels(method: ast.FunctionDef | None, attribute: str) -> bool:
-    """Does ``method`` call ``self.<attribute>.cancel()`` (a one-shot timer's callback)?"""
-    if method is None:
-        return False
-    for node in ast.walk(method):
-        if (
-            isinstance(node, ast.Call)
-            and isinstance(node.func, ast.Attribute)
-            and node.func.attr in ("cancel", "destroy")
-            and isinstance(node.func.value, ast.Attribute)
-            and node.func.value.attr == attribute
-        ):
-            return True
-    return False
-
-
-def _calls(stmt: ast.stmt) -> list[ast.Call]:
-    """The calls in ``stmt`` outside nested functions and lambdas, outermost first."""
-    found = []
-    stack: list[ast.AST] = [stmt]
-    while stack:
-        node = stack.pop(0)
-        if (
-            isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef))
-            and node is not stmt
-        ):
-            continue
-        if isinstance(node, ast.Call):
-            found.append(node)
-        stack.extend(ast.iter_child_nodes(node))
-    return found
-
-
-def _blocks(stmt: ast.stmt) -> list[tuple[list[ast.stmt], str | None]]:
-    """The blocks of a compound statement, each with the condition it runs under (None: as
-    often as the statement itself). ``if __name__ == '__main__':`` is no condition: the module
-    runs as a script."""
-    if isinstance(stmt, ast.If):
-        test = ast.unparse(stmt.test)
-        if test in ("__name__ == '__main__'", '__name__ == "__main__"'):
-            return [(stmt.body, None), (stmt.orelse, "not " + test)]
-        return [(stmt.body, test), (stmt.orelse, f"not ({test})")]
-    parts = [(getattr(stmt, name, None) or [], None) for name in ("body", "finalbody")]
-    if isinstance(stmt, ast.Try):
-        parts.append((stmt.orelse, "no exception is raised"))
-    for handler in getattr(stmt, "handlers", None) or []:
-        parts.append(
-            (handler.body, f"{ast.unparse(handler.type) if handler.type else 'an exception'} is raised")
-        )
-    return parts
-
-
-def _comprehended(stmt: ast.stmt) -> set[int]:
-    """The ids of the calls in ``stmt`` made inside a comprehension (once per item)."""
-    found: set[int] = set()
-    for node in ast.walk(stmt):
-        if isinstance(node, (ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp)):
-            found.update(id(n) for n in ast.walk(node) if isinstance(n, ast.Call))
-    return found
-
-
-def mark_assignments(tree: ast.Module) -> None:
-    """Mark each call assigned to a name in ``tree`` with its assignment (a port's or timer's
-    name in the code); done for every module of a package before any is read, since a class
-    reads the methods of its base classes in other modules."""
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call):
-            node.value._rosaadl_parent = node  # type: ignore[attr-defined]
 
 
 def read_module(
