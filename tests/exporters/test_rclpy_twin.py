@@ -117,6 +117,12 @@ def test_warning_not_warn_and_a_clean_exit_on_sigint(library_ws):
         handler = main.split("except _rclpy.RCLError:")[1].split("finally:")[0]
         assert "if rclpy.ok():" in handler and "raise" in handler
         assert "from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy" in text
+        # the wait loop lets each task it gave reach its worker before it looks again (rclpy
+        # offers a task no worker has started again and again: a seven-callback node took a
+        # third of a CPU and missed timer periods under SCHED_FIFO)
+        assert "executor.wait_for_ready_callbacks = hand_off(executor.wait_for_ready_callbacks)" in main
+        waits = ast.unparse(_methods(path)["hand_off"])
+        assert "task.executing() or task.done()" in waits and "time.sleep(HAND_OFF_POLL)" in waits
 
 
 def test_timer_dispatches_are_released_on_their_schedule(library_ws):
