@@ -23,7 +23,7 @@ from pyecore.ecore import EObject
 
 from rosaadl import fileio, model
 from rosaadl.arguments import checked, expect_path
-from rosaadl.errors import Diagnostic, ExportError, ParseError, RosaadlError
+from rosaadl.errors import Diagnostic, ExportError, ModelError, ParseError, RosaadlError
 from rosaadl.exporters.aadl_text import unit_file_name, write_units
 from rosaadl.importers.aadl_text import read_string
 from rosaadl.properties import Range
@@ -246,15 +246,6 @@ def _verify(
         raise file_error(errors)
 
 
-def _instance_at(instance: EObject, path: str) -> EObject | None:
-    """The component instance at the dotted ``path`` below ``instance`` (names case-blind)."""
-    for name in path.lower().split("."):
-        instance = next((c for c in instance.componentInstances if (c.name or "").lower() == name), None)
-        if instance is None:
-            return None
-    return instance
-
-
 def _check_values(
     instance: EObject, impl: ProfiledImplementation, expected: list[ExpectedValues]
 ) -> list[RosaadlError]:
@@ -275,7 +266,10 @@ def _check_values(
         )
     for item in expected:
         m = item.m
-        thread = _instance_at(instance, item.thread)
+        try:
+            thread = model.find_instance(instance, item.thread)
+        except ModelError:
+            thread = None
         if thread is None:
             errors.append(m.error("thread", f"{impl.process} has no thread {item.thread}"))
             continue

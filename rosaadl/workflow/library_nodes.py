@@ -22,7 +22,7 @@ from pyecore.ecore import EObject
 from rosaadl.errors import Diagnostic, ModelError, RosaadlError
 from rosaadl.exporters.aadl_text.lexical import literal
 from rosaadl.lookup import PropertyLookup
-from rosaadl.model import is_a
+from rosaadl.model import find_instance, is_a
 from rosaadl.properties import property_value
 from rosaadl.resolution import Resolver
 from rosaadl.transforms.instantiate import instantiate
@@ -224,17 +224,12 @@ class NodeFinder:
             self.model, self.resolver.qualified_name(pim), resolver=self.resolver, diagnostics=notes
         )
         instances: dict[str, EObject] = {}
-
-        def walk(parent: EObject, prefix: str) -> None:
-            for child in parent.componentInstances:
-                key = f"{prefix}{(child.name or '').lower()}"
-                if key in threads:
-                    instances.setdefault(key, child)
-                elif any(k.startswith(f"{key}.") for k in threads):
-                    walk(child, f"{key}.")
-
         try:
-            walk(instance, "")
+            for key, (path, _sub) in found.items():
+                try:
+                    instances[key] = find_instance(instance, path)
+                except ModelError:
+                    continue  # not instantiated (in a mode, say): no values to compare with
         finally:
             self.model.instances.remove(instance)
         unit = self.resolver.unit_of(ctype)
