@@ -469,28 +469,19 @@ class _Comparison:
             self.add(key, "data_age_us", chain.data_age, measured.latency_us.max, chain.data_age)
 
     def callbacks_without_execution_times(self, callbacks: Any) -> set[str]:
-        """The measured callbacks whose thread has no Compute_Execution_Time: the analysis counts
-        their execution as 0, so their bound is an estimate, not a claim to hold a run to (a
-        warning says so)."""
-        untimed = set()
-        for callback in callbacks:
-            key = _below_root(callback.path, self.name)
-            if self.thread(callback.path) is None:
-                continue
-            try:
-                thread = find_instance(self.root, key)
-            except RosaadlError:
-                continue
-            if thread is not None and property_value(thread, "Compute_Execution_Time") is None:
-                untimed.add(callback.path)
-                self.diagnostics.append(
-                    Diagnostic(
-                        "warning",
-                        "executor bound not held to the run: the model gives the callback no "
-                        "Compute_Execution_Time (counted as 0); profile its node (library add-profile)",
-                        Location(path=callback.path),
-                    )
+        """The measured callbacks the model gives no Compute_Execution_Time (the executor
+        analysis counts their execution as 0): their bound is an estimate, not a claim to hold
+        a run to (a warning says so)."""
+        untimed = {c.path for c in callbacks if not c.timed and self.thread(c.path) is not None}
+        for path in sorted(untimed):
+            self.diagnostics.append(
+                Diagnostic(
+                    "warning",
+                    "executor bound not held to the run: the model gives the callback no "
+                    "Compute_Execution_Time (counted as 0); profile its node (library add-profile)",
+                    Location(path=path),
                 )
+            )
         return untimed
 
     def unmatched(self) -> None:

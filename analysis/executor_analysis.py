@@ -62,6 +62,8 @@ class CallbackBound:
     wcrt: Fraction | None
     thread_wcrt: Fraction | None
     deadline: Fraction | None
+    #: the model gives the callback's Compute_Execution_Time (else its bound counts it as 0)
+    timed: bool = True
 
     @property
     def met(self) -> bool | None:
@@ -420,6 +422,7 @@ def analyze_executors(
                     wcrt,
                     thread_wcrt.get(callback.path),
                     callback.deadline,
+                    callback.timed,
                 )
             )
     everything = [c for e in executors for c in e.callbacks]

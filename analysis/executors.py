@@ -92,6 +92,8 @@ class Callback:
     jitters: tuple[Fraction, ...] = ()
     #: the executor's latency (µs) from its release to its start, idle (``Dispatch_Latency``)
     dispatch_latency: Fraction = Fraction(0)
+    #: the model gives its Compute_Execution_Time (else ``wcet`` is 0: the bound is an estimate)
+    timed: bool = True
 
 
 @dataclass(frozen=True)
@@ -202,6 +204,7 @@ class _Reader:
         if kind is None:
             return None
         wcet = self.us(thread, "Timing_Properties::Compute_Execution_Time")
+        timed = wcet is not None
         if wcet is None:
             self.props.report(
                 "warning", "callback has no Compute_Execution_Time; its execution counts as 0", thread
@@ -229,6 +232,7 @@ class _Reader:
             periodic=dispatch == "periodic",
             thread=thread,
             dispatch_latency=latency or Fraction(0),
+            timed=timed,
         )
 
     def executor(self, owner: Any, threads: list[Any], rosmod: bool) -> Executor | None:
