@@ -57,7 +57,6 @@ from rosaadl.analysis.deployment_targets import (
     of_class,
 )
 from rosaadl.analysis.instance_values import (
-    ProcessorBindings,
     PropertyReader,
     category_of,
     instance_root,
@@ -563,7 +562,7 @@ def deployment_problem(
             )
         )
     index = {c.path: i for i, c in enumerate(cores)}
-    bindings = ProcessorBindings(reader)
+    bindings = analysis.bindings
     allowed_lists = []
     current = []
     targets: dict[tuple[int, int], str] = {}

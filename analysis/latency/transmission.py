@@ -32,7 +32,7 @@ from typing import Any
 from rosaadl.analysis.busload import data_size_kbyte
 from rosaadl.analysis.instance_values import PropertyReader, SystemMode, category_of
 from rosaadl.analysis.latency.model import Contributor
-from rosaadl.model import is_a
+from rosaadl.model import qualified_name
 
 __all__ = ["Transmission", "connection_transmission_us"]
 
@@ -61,11 +61,7 @@ def _label(bus: Any) -> str:
     from rosaadl.analysis.latency.contributors import contributor_label
 
     if not _is_instance(bus):
-        unit = bus.eContainer()
-        while unit is not None and not is_a(unit, "AadlPackage"):
-            unit = unit.eContainer()
-        package = getattr(unit, "name", "") or ""
-        return f"protocol {package}::{bus.name}" if package else f"protocol {bus.name}"
+        return f"protocol {qualified_name(bus)}"
     return contributor_label(bus, "bus")
 
 

@@ -59,7 +59,7 @@ CREATES = {
     "create_timer": ("Timer", ("timer_period_sec", "callback")),
 }
 #: The node classes of rclpy (``rclpy.lifecycle.Node`` is ``LifecycleNode``).
-NODE_BASES = _NODE_BASES = (
+NODE_BASES = (
     "rclpy.node.Node",
     "rclpy.lifecycle.Node",
     "rclpy.lifecycle.LifecycleNode",
@@ -177,6 +177,7 @@ class _Reader:
         self.constants = self._module_constants()
         self.consumed: set[int] = set()  # ids of the create_* calls read into a node
         self.result = ModuleNodes()
+        self._lineages: dict[int, list[OutsideClass]] = {}  # id of a class -> its lineage
 
     def at(self, node: ast.AST) -> Location:
         """Where ``node`` is: in this module, or in the module of a base class it reads."""
@@ -227,7 +228,7 @@ class _Reader:
                     continue
                 for base in cls.bases:
                     name = dotted(base, self.imports)
-                    if name in _NODE_BASES or name in found or name in self.outside:
+                    if name in NODE_BASES or name in found or name in self.outside:
                         found[cls.name] = cls
                         changed = True
                         break
@@ -235,7 +236,14 @@ class _Reader:
 
     def lineage(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> list[OutsideClass]:
         """``cls`` and its node base classes, bases first: those of this module and those of
-        other modules of the package (:class:`OutsideClass`), each with its module's names."""
+        other modules of the package (:class:`OutsideClass`), each with its module's names
+        (found once per class: its methods, attributes, names and ``__init__`` chain use it)."""
+        known = self._lineages.get(id(cls))
+        if known is None:
+            known = self._lineages[id(cls)] = self._find_lineage(cls, by_name)
+        return known
+
+    def _find_lineage(self, cls: ast.ClassDef, by_name: dict[str, ast.ClassDef]) -> list[OutsideClass]:
         here = OutsideClass(cls, self.imports, self.constants, by_name)
         found: list[OutsideClass] = []
         seen: set[int] = set()
@@ -548,7 +556,7 @@ class _Reader:
         if "qos_profile" in names:
             qos = self.qos(_argument(call, names, "qos_profile"), scope, call)
         port = PortFact(kind, type_name, topic.value, self.at(call), qos, "", topic.parameter, topic.derived)
-        port.name = assigned_attribute(call, self.tree) or ""
+        port.name = assigned_attribute(call) or ""
         fact.ports.append(port)
 
     def timer(self, call: ast.Call, scope: Scope, fact: NodeFact, names: tuple[str, ...]) -> None:
@@ -560,7 +568,7 @@ class _Reader:
             parameter, derived = value.parameter, value.derived
             period = period_seconds(value.value)
         callback = _argument(call, names, "callback")
-        attribute = assigned_attribute(call, self.tree, raw=True)
+        attribute = assigned_attribute(call, raw=True)
         if (
             attribute
             and isinstance(callback, ast.Attribute)
@@ -575,7 +583,7 @@ class _Reader:
         if period is None and not (isinstance(value, Known) and value.parameter):
             shown = ast.unparse(expr) if expr is not None else "nothing"
             self.warn(f"create_timer: the period {shown} is not known from the source", call)
-        name = assigned_attribute(call, self.tree) or (
+        name = assigned_attribute(call) or (
             callback.attr if isinstance(callback, ast.Attribute) else f"timer_{call.lineno}"
         )
         fact.timers.append(TimerFact(name, period, self.at(call), parameter, derived))
@@ -813,7 +821,8 @@ def read_module(
     what its names stand for (relative imports resolved), ``outside``: the node classes of the
     package's other modules by qualified name (``pkg.base.BaseNode``); ``bases_only``: the
     classes of the module that are bases of other node classes only (not nodes themselves)."""
-    mark_assignments(tree)
+    if outside is None:  # a package's modules are marked once, before any is read
+        mark_assignments(tree)
     return _Reader(tree, file, warnings, package, imports, outside, bases_only).read()
 
 

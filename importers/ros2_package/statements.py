@@ -37,7 +37,7 @@ def forget_changed(target: ast.expr | None, names: dict[str, Known]) -> None:
         target = inner
 
 
-def assigned_attribute(call: ast.Call, tree: ast.Module, *, raw: bool = False) -> str | None:
+def assigned_attribute(call: ast.Call, *, raw: bool = False) -> str | None:
     """``x`` when ``call`` is assigned to ``self.x`` or ``x`` (the port's or timer's name in the
     code, without leading and trailing underscores unless ``raw``)."""
     parent = getattr(call, "_rosaadl_parent", None)

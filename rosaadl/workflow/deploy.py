@@ -89,11 +89,12 @@ def _proposed_text(proposal: DeploymentProposal, implementation: EObject, name: 
         pairs.append((unit.removeprefix(root), core.removeprefix(root)))
         # a thread bound otherwise than its process keeps its own binding unless restated
         pairs += [(t.removeprefix(root), core.removeprefix(root)) for t in problem.bound_inside.get(u, ())]
-    units = [u.lower() for u, _c in pairs]
+    units = {u.lower() for u, _c in pairs}
 
     def rebound(path: object) -> bool:
-        text = str(path).lower()
-        return any(text == u or text.startswith(u + ".") for u in units)
+        """``path`` is a unit bound anew or lies inside one (a dotted prefix of it is)."""
+        parts = str(path).lower().split(".")
+        return any(".".join(parts[:i]) in units for i in range(1, len(parts) + 1))
 
     owned = implementation.ownedPropertyAssociations
     kept = list(owned)

@@ -246,7 +246,7 @@ class _Observer:
         deployment = DeploymentFact("graph", location=Location(path="graph"))
         for name, namespace in sorted(set(self.node.get_node_names_and_namespaces())):
             full = _full_name(name, namespace)
-            if full == own or name.startswith("_"):  # hidden nodes: tools (ros2 daemon), this reader
+            if full == own or hidden(full):  # hidden nodes: tools (ros2 daemon), this reader
                 continue
             if full in self.facts.nodes:
                 self.warn("two nodes of the same name; the second is left out", full)
