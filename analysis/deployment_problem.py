@@ -563,6 +563,7 @@ def deployment_problem(
         )
     index = {c.path: i for i, c in enumerate(cores)}
     bindings = analysis.bindings
+    class_cover: dict[str, dict[int, str | None]] = {}  # classes named -> the cores they cover
     allowed_lists = []
     current = []
     targets: dict[tuple[int, int], str] = {}
@@ -583,25 +584,23 @@ def deployment_problem(
                 restrictions.append((mine, [], f" of {relative_path(thread)}"))
             if kinds and kinds != classes:
                 restrictions.append(([], kinds, f" of {relative_path(thread)}"))
+        limits = []  # (the cores they cover, with virtual processors; what names them; property)
         for targets_, classes_, holder in restrictions:
             if targets_:
                 covered = covered_cores(targets_, index, bindings, mode)
-                chosen &= set(covered)
-                for k, vp in covered.items():
-                    if vp is not None:
-                        targets.setdefault((u, k), vp)
                 names = ", ".join(instance_path(t) for t in targets_)
-                pins.append(Pin(u, names, "", tuple(sorted(covered)), f"Allowed_Processor_Binding{holder}"))
+                limits.append((covered, names, f"Allowed_Processor_Binding{holder}"))
             if classes_:
-                covered = covered_cores(of_class(root, classes_, mode), index, bindings, mode)
-                chosen &= set(covered)
-                for k, vp in covered.items():
-                    if vp is not None:
-                        targets.setdefault((u, k), vp)
                 names = ", ".join(str(c) for c in classes_)
-                pins.append(
-                    Pin(u, names, "", tuple(sorted(covered)), f"Allowed_Processor_Binding_Class{holder}")
-                )
+                if names not in class_cover:  # the same classes for many units: one walk
+                    class_cover[names] = covered_cores(of_class(root, classes_, mode), index, bindings, mode)
+                limits.append((class_cover[names], names, f"Allowed_Processor_Binding_Class{holder}"))
+        for covered, names, by in limits:
+            chosen &= set(covered)
+            for k, vp in covered.items():
+                if vp is not None:
+                    targets.setdefault((u, k), vp)
+            pins.append(Pin(u, names, "", tuple(sorted(covered)), by))
         for pin in pins:
             if pin.unit == u and pin.device:
                 chosen &= set(pin.cores)
