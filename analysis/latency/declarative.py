@@ -28,16 +28,11 @@ from typing import Any
 
 from rosaadl import model as _model
 from rosaadl.errors import RosaadlError
-from rosaadl.lookup.instances import find_instance
+from rosaadl.lookup.instances import by_name, find_instance, instance_node
 
 __all__ = ["DeclarativeValues"]
 
 log = logging.getLogger(__name__)
-
-
-def _by_name(elements: Any, name: str | None) -> Any | None:
-    wanted = (name or "").lower()
-    return next((e for e in elements if (e.name or "").lower() == wanted), None)
 
 
 class DeclarativeValues:
@@ -96,8 +91,8 @@ class DeclarativeValues:
         if lookup is None or container is None or not _model.is_a(container, "ComponentInstance"):
             return []
         try:
-            node = self._node(lookup, container)
-            decl = _by_name(lookup.resolver.end_to_end_flows(node.impl), flow.flow or flow.name)
+            node = instance_node(lookup.associations, container, self._nodes)
+            decl = by_name(lookup.resolver.end_to_end_flows(node.impl), flow.flow or flow.name)
         except (RosaadlError, LookupError, AttributeError, TypeError) as exc:
             log.debug("flow %s not resolved: %s", _model.instance_path(flow), exc)
             return []
@@ -118,24 +113,6 @@ class DeclarativeValues:
                 log.debug("assigned %s of %s not resolved: %s", name, _model.instance_path(obj), exc)
         self._answers[marker] = answer
         return answer
-
-    def _node(self, lookup: Any, ci: Any) -> Any:
-        node = self._nodes.get(id(ci))
-        if node is not None:
-            return node
-        resolver = lookup.resolver
-        classifier = resolver.classifier(ci.classifier) if ci.classifier else None
-        parent_obj = ci.eContainer()
-        if parent_obj is None or not _model.is_a(parent_obj, "ComponentInstance"):
-            node = lookup.root_node(classifier, ci)
-        else:
-            parent = self._node(lookup, parent_obj)
-            sub = _by_name(resolver.subcomponents(parent.impl), ci.subcomponent or ci.name)
-            if classifier is None and sub is not None:
-                classifier = resolver.subcomponent_classifier(sub)
-            node = lookup.child_node(parent, sub, classifier, ci, list(ci.index), ci.name)
-        self._nodes[id(ci)] = node
-        return node
 
     def _declared(self, lookup: Any, obj: Any, key: str) -> bool | None:
         """Whether the lookup of ``key`` on ``obj`` ends at an association (the default value,

@@ -26,7 +26,14 @@ from .nodes import ComponentNode, child_node, root_node
 from .order import Evaluate, Found, component_found, connection_found, element_found, evaluator, feature_found
 from .values import Reference, select_modal
 
-__all__ = ["find_instance", "instance_reference", "own_instance_value", "resolve_instance_path"]
+__all__ = [
+    "find_instance",
+    "instance_node",
+    "instance_reference",
+    "own_instance_value",
+    "resolve_instance_path",
+    "by_name",
+]
 
 #: what a lookup needs for one element: its value, how to evaluate other properties on it
 #: (``Deadline => Period``), how to resolve its references
@@ -55,7 +62,7 @@ def own_instance_value(obj: EObject, key: str, in_mode: str | None) -> EObject |
     return selected[0][0] if selected else None
 
 
-def _instance_node(assoc: Associations, ci: EObject, cache: dict[int, ComponentNode]) -> ComponentNode:
+def instance_node(assoc: Associations, ci: EObject, cache: dict[int, ComponentNode]) -> ComponentNode:
     """The node of component instance ``ci``, its ancestors' nodes made first (in ``cache``)."""
     node = cache.get(id(ci))
     if node is not None:
@@ -66,8 +73,8 @@ def _instance_node(assoc: Associations, ci: EObject, cache: dict[int, ComponentN
     if parent_obj is None or not _model.is_a(parent_obj, "ComponentInstance"):
         node = root_node(assoc, classifier, ci)
     else:
-        parent = _instance_node(assoc, parent_obj, cache)
-        sub = _by_name(resolver.subcomponents(parent.impl), ci.subcomponent or ci.name)
+        parent = instance_node(assoc, parent_obj, cache)
+        sub = by_name(resolver.subcomponents(parent.impl), ci.subcomponent or ci.name)
         if classifier is None and sub is not None:
             classifier = resolver.subcomponent_classifier(sub)
         node = child_node(assoc, parent, sub, classifier, ci, list(ci.index), ci.name)
@@ -82,7 +89,7 @@ def find_instance(assoc: Associations, obj: EObject, key: str, binding: Binding 
     resolver = assoc.resolver
     reference = instance_reference
     if _model.is_a(obj, "ComponentInstance"):
-        node = _instance_node(assoc, obj, cache)
+        node = instance_node(assoc, obj, cache)
         evaluate = evaluator(assoc, node, lambda k: component_found(assoc, node, k, binding))
         return evaluate(key), evaluate, reference
     if _model.is_a(obj, "FeatureInstance"):
@@ -94,11 +101,11 @@ def find_instance(assoc: Associations, obj: EObject, key: str, binding: Binding 
         path.reverse()
         if current is None:
             return None, None, reference
-        node = _instance_node(assoc, current, cache)
+        node = instance_node(assoc, current, cache)
         chain: list[EObject] = []
         features = resolver.features(node.classifier)
         for fi in path:
-            decl = _by_name(features, fi.feature or fi.name)
+            decl = by_name(features, fi.feature or fi.name)
             if decl is None:
                 return None, None, reference
             chain.append(decl)
@@ -113,25 +120,25 @@ def find_instance(assoc: Associations, obj: EObject, key: str, binding: Binding 
         return evaluate(key), evaluate, reference
     if _model.is_a(obj, "ConnectionInstance"):
         owner_obj = obj.eContainer()
-        owner = _instance_node(assoc, owner_obj, cache) if owner_obj is not None else None
+        owner = instance_node(assoc, owner_obj, cache) if owner_obj is not None else None
         refs = []
         for ref in obj.connectionReferences:
             if ref.context is None:
                 continue
-            context = _instance_node(assoc, ref.context, cache)
-            decl = _by_name(resolver.connections(context.impl), ref.connection)
+            context = instance_node(assoc, ref.context, cache)
+            decl = by_name(resolver.connections(context.impl), ref.connection)
             if decl is not None:
                 refs.append((decl, context))
         evaluate = evaluator(assoc, owner, lambda k: connection_found(assoc, refs, owner, k, binding))
         return evaluate(key), evaluate, reference
     if _model.is_a(obj, "ModeInstance", "EndToEndFlowInstance", "FlowSpecificationInstance"):
-        node = _instance_node(assoc, obj.eContainer(), cache)
+        node = instance_node(assoc, obj.eContainer(), cache)
         if _model.is_a(obj, "ModeInstance"):
-            decl = _by_name(resolver.modes(node.classifier), obj.mode or obj.name)
+            decl = by_name(resolver.modes(node.classifier), obj.mode or obj.name)
         elif _model.is_a(obj, "EndToEndFlowInstance"):
-            decl = _by_name(resolver.end_to_end_flows(node.impl), obj.flow or obj.name)
+            decl = by_name(resolver.end_to_end_flows(node.impl), obj.flow or obj.name)
         else:
-            decl = _by_name(resolver.flow_specifications(node.classifier), obj.name)
+            decl = by_name(resolver.flow_specifications(node.classifier), obj.name)
         if decl is None:
             return None, None, reference
         evaluate = evaluator(assoc, node, lambda k: element_found(assoc, node, decl, k, binding))
@@ -172,7 +179,7 @@ def resolve_instance_path(start: EObject, path: str) -> EObject | None:
     return current
 
 
-def _by_name(elements: Iterable[EObject], name: str | None) -> EObject | None:
+def by_name(elements: Iterable[EObject], name: str | None) -> EObject | None:
     wanted = (name or "").lower()
     for element in elements:
         if (element.name or "").lower() == wanted:
