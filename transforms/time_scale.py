@@ -3,8 +3,9 @@
 ``rosaadl run --period-scale F`` multiplies every period of the generated nodes by ``F`` (their
 timers, so every publish and event rate follows) and leaves the execution times as they are:
 the application does the same work ``F`` times less often. :func:`scale_periods` makes the
-instance that run is the deployment of: every ``Period`` and ``Deadline`` held by a component
-instance (thread, process, device, ...) multiplied by ``F``, in every mode; the execution times
+instance that run is the deployment of: every ``Period``, ``Deadline`` and ``Dispatch_Offset``
+(where in its period a generated timer releases) held by a component instance (thread, process,
+device, ...) multiplied by ``F``, in every mode; the execution times
 (``Compute_Execution_Time``), sizes, bandwidth capacities and connection latencies are kept.
 Scaling periods and deadlines alike keeps every deadline relative to its period (an implicit
 deadline stays implicit, deadline-monotonic priorities keep their order), so the scaled model is
@@ -29,7 +30,7 @@ from rosaadl.units import standard_units
 __all__ = ["SCALED_PROPERTIES", "scale_periods", "period_scale_factor"]
 
 #: The timing properties a period scale multiplies.
-SCALED_PROPERTIES = ("Period", "Deadline")
+SCALED_PROPERTIES = ("Period", "Deadline", "Dispatch_Offset")
 
 
 def period_scale_factor(value: float | int | str | Fraction) -> Fraction:
@@ -58,7 +59,7 @@ def _scaled(value: EObject, factor: Fraction) -> bool:
 
 
 def scale_periods(root: EObject, factor: float | int | str | Fraction) -> int:
-    """Multiply every ``Period`` and ``Deadline`` below the system instance ``root`` by
+    """Multiply every ``Period``, ``Deadline`` and ``Dispatch_Offset`` below the system instance ``root`` by
     ``factor``, in place (see the module docstring); the number of values scaled. A factor of 1
     changes nothing."""
     factor = period_scale_factor(factor)

@@ -340,6 +340,9 @@ class Deployment:
                     priority if isinstance(priority, int) and not isinstance(priority, bool) else 0,
                 )
             )
+            offset = seconds(prop(thread, "Dispatch_Offset")) if thread is not None else None
+            if offset and plan.timer == "periodic":  # releases at k * Period + Dispatch_Offset
+                node.parameters.append((f"{plan.ident}.offset", float(offset)))
             cet = cet_bounds(prop(thread, "Compute_Execution_Time")) if thread is not None else None
             if cet is not None:  # the workload twin's CPU time per dispatch (parameter rosaadl.emulate)
                 node.parameters.append((f"{plan.ident}.cet_min", cet[0]))

@@ -167,9 +167,11 @@ class ThreadPlan:
     period: float | None = None
     deadline: float | None = None
     priority: int | None = None
+    offset: float | None = None  # Dispatch_Offset in seconds: a timer's releases from its period's grid
     period_text: str = ""
     deadline_text: str = ""
     cet_text: str = ""
+    offset_text: str = ""
     cet: tuple[float, float] | None = None  # Compute_Execution_Time bounds in seconds
     policy: str = ""
     group: GroupPlan | None = None
@@ -227,6 +229,8 @@ class ThreadPlan:
             parts.append(f"Period {self.period_text}")
         if self.deadline_text:
             parts.append(f"Deadline {self.deadline_text}")
+        if self.offset_text:
+            parts.append(f"Dispatch_Offset {self.offset_text}")
         if self.cet_text:
             parts.append(f"Compute_Execution_Time {self.cet_text}")
         if self.priority is not None:
@@ -514,6 +518,7 @@ class NodeBuilder:
         deadline_value = None if container else prop(thread, "Deadline")
         if seconds(deadline_value) is None:  # AADL's default Deadline is the Period
             deadline_value = period_value
+        offset_value = None if container else prop(thread, "Dispatch_Offset")
         dispatch = "" if container else _dispatch_of(thread)
         plan = ThreadPlan(
             name=dotted,
@@ -524,6 +529,8 @@ class NodeBuilder:
             period=seconds(period_value),
             deadline=seconds(deadline_value),
             priority=None if container else _int(prop(thread, "Priority")),
+            offset=seconds(offset_value),
+            offset_text=quantity_text(offset_value) if seconds(offset_value) else "",
             period_text=quantity_text(period_value) if seconds(period_value) is not None else "",
             deadline_text=quantity_text(deadline_value) if seconds(deadline_value) is not None else "",
             cet_text="" if container else quantity_text(prop(thread, "Compute_Execution_Time")),

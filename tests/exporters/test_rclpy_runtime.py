@@ -257,6 +257,55 @@ def test_each_thread_runs_at_its_priority(built, tmp_path):
         assert "policy 0, priority 0" in text, text[-3000:]
 
 
+#: Dispatches of each timer traced for the release grid test.
+GRID_DISPATCHES = 12
+
+
+def _timer_releases(folder: Path, node: str, thread: str) -> list[int]:
+    """The release times (ns, ``time.monotonic_ns``) of the dispatches of ``thread`` in the
+    trace ``node`` wrote to ``folder``."""
+    [trace] = folder.glob(f"{node}.*.trace")
+    lines = [line.split() for line in trace.read_text().splitlines()]
+    return [int(fields[2]) for fields in lines if fields[:2] == ["D", thread]]
+
+
+def test_timers_of_two_nodes_release_on_one_grid_with_their_offsets(built, tmp_path):
+    """The tracker's and pos_to_cmd's timers (both Period 100 ms) started in two processes one
+    after the other: each releases on its period's grid of the clock, the tracker's at its
+    ``point_broadcaster.offset`` of 37 ms into the period, so the two keep 37 ms between them
+    (within 1 ms) whatever the start-up did; before, the gap was whatever the starts gave."""
+    nodes = {n["name"]: n for n in launch_nodes(built / "src/tracking_bringup/launch/tracking.launch.py")}
+    env = workspace_environment(built)
+    traces = tmp_path / "trace"
+    offsets = {"ocv_color_tracking": 0.037, "pos_to_cmd": 0.0}
+    timers = {"ocv_color_tracking": "point_broadcaster", "pos_to_cmd": "cmd_publisher"}
+    processes = {}
+    try:
+        for name, thread in timers.items():
+            settings = {f"{thread}__offset": offsets[name], "rosaadl__trace": True}
+            settings["rosaadl__trace_dir"] = traces
+            command = node_command(built, nodes[name], prefix="none", **settings)
+            command += ["--log-level", f"{name}:=debug"]
+            with open(tmp_path / f"{name}.log", "w") as out:
+                processes[name] = subprocess.Popen(command, env=env, stdout=out, stderr=subprocess.STDOUT)
+            time.sleep(0.05)  # not on a grid
+        for name, thread in timers.items():
+            log = tmp_path / f"{name}.log"
+            assert _wait_for(log, f"{thread}: dispatched", 60, count=GRID_DISPATCHES), log.read_text()[-2000:]
+    finally:
+        for process in processes.values():
+            process.send_signal(signal.SIGINT)
+        codes = {name: process.wait(timeout=30) for name, process in processes.items()}
+    assert codes == {"ocv_color_tracking": 0, "pos_to_cmd": 0}
+    period = 100_000_000
+    tracker = _timer_releases(traces, "ocv_color_tracking", "point_broadcaster")
+    poscmd = _timer_releases(traces, "pos_to_cmd", "cmd_publisher")
+    assert len(tracker) >= GRID_DISPATCHES and len(poscmd) >= GRID_DISPATCHES
+    gaps = [(release - poscmd[0]) % period / 1e6 for release in tracker]
+    assert all(abs(gap - 37.0) <= 1.0 for gap in gaps), gaps
+    assert all(abs((release - poscmd[0]) % period / 1e6 - 50) > 49 for release in poscmd), poscmd
+
+
 #: SIGINTs sent to every node of the demo (the issue's acceptance).
 SIGINT_ROUNDS = 20
 

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 from conftest import corpus_dir
+from offset_sample import OFFSET_ROOT, write_offset_tracking
 from ros_runtime import launch_nodes
 from test_rclpy_models import services_instance, tracking_instance
 
@@ -267,3 +268,33 @@ def test_chrt_is_dropped_where_realtime_is_not_permitted(tmp_path, monkeypatch, 
     prefixes = [n.get("prefix") for n in launch_nodes(launch)]
     assert "chrt -f 70" in launch.read_text() and not any("chrt" in (p or "") for p in prefixes)
     assert "real-time scheduling (chrt -f 70) is not permitted here" in capsys.readouterr().err
+
+
+def test_timers_release_on_their_period_grid_and_their_dispatch_offset(tmp_path):
+    """Each generated timer declares ``<thread>.offset`` (its Dispatch_Offset, 0.0 without; the
+    docstring says it), the launch file gives an instance's Dispatch_Offset, and ``start_timers``
+    puts each generated timer's first release at the next k * Period + offset of the node's clock
+    (rcl counts a reset's first release one period from now: the period is made that gap for the
+    reset, then put back); the start-up heap is frozen out of the collector before the executor spins."""
+    workspace = aadl_text.read_files([write_offset_tracking(tmp_path / "model")], include_library=True)
+    out = tmp_path / "src"
+    generate_workspace(instantiate(workspace, OFFSET_ROOT), out, options=OPTIONS)
+    path = out / "nd_pos_to_cmd/nd_pos_to_cmd/pos_to_cmd.py"
+    text = path.read_text()
+    assert "self.declare_parameter('cmd_publisher.offset', 0.02)" in text
+    assert "Compute_Execution_Time 1060 us .. 1060 us, Dispatch_Offset 20 ms" not in text
+    assert "Deadline 100000 us, Dispatch_Offset 20 ms" in text
+    assert "point_receiver.offset" not in text  # a subscription's thread has no timer
+    methods = _methods(path)
+    start = ast.unparse(methods["start_timers"])
+    assert "timed = ('cmd_publisher',)" in start
+    assert "threads = {id(getattr(self, 'timer_' + thread)): thread for thread in timed}" in start
+    grid = start.split("period = timer.timer_period_ns")[1]
+    assert "first = (offset - self.get_clock().now().nanoseconds) % period or period" in grid
+    assert grid.index("timer.timer_period_ns = first") < grid.index("timer.reset()")
+    assert grid.index("timer.reset()") < grid.index("timer.timer_period_ns = period")
+    main = ast.unparse(methods["main"])
+    assert main.index("node.start_timers()") < main.index("gc.freeze()") < main.index("executor.spin()")
+    launch = launch_nodes(next(out.glob("*_bringup/launch/*.launch.py")))
+    offsets = {n["name"]: n["parameters"][0].get("cmd_publisher.offset") for n in launch}
+    assert offsets["pos_to_cmd"] == pytest.approx(0.02)

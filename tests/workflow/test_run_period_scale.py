@@ -6,6 +6,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
+from offset_sample import OFFSET_ROOT, write_offset_tracking
 
 import rosaadl.library
 from rosaadl.cli import main
@@ -84,3 +85,19 @@ def test_the_model_of_a_scaled_run_has_its_periods_and_deadlines_scaled() -> Non
     assert scale_periods(instance, Fraction(1)) == 0
     with pytest.raises(ModelError, match="positive number"):
         scale_periods(instance, 0)
+
+
+def test_a_dispatch_offset_is_given_to_its_timer_and_scaled_with_the_periods(tmp_path) -> None:
+    """A periodic thread's Dispatch_Offset reaches its node as ``<thread>.offset`` (seconds,
+    where the generated timer releases in its period); a period scale multiplies it with the
+    periods, in the run's parameters as in the model of the run."""
+    workspace = read_files([SYSTEMS, write_offset_tracking(tmp_path)])
+    plan = run_plan(plan_workspace(instantiate(workspace, OFFSET_ROOT)))
+    assert _parameters(plan, "pos_to_cmd")["cmd_publisher.offset"] == pytest.approx(0.02)
+    assert "point_broadcaster.offset" not in _parameters(plan, "ocv_color_tracking")  # none: 0
+    assert _parameters(scaled_plan(plan, 3.0), "pos_to_cmd")["cmd_publisher.offset"] == pytest.approx(0.06)
+    instance = instantiate(workspace, OFFSET_ROOT)
+    scale_periods(instance, 3)
+    thread = find_instance(instance, "rem_trk_sw.poscmd.cmd_publisher")
+    assert property_value(thread, "Dispatch_Offset").to("ms") == pytest.approx(60)
+    assert property_value(thread, "Period").to("ms") == pytest.approx(300)

@@ -4,13 +4,14 @@ A machine with fewer or slower cores than the model's target cannot run the appl
 modelled rates: an overloaded node drops messages and runs at another rate than modelled, and
 nothing measured can be compared with the model. Scaled, every timer of the nodes fires ``F``
 times less often (so every publish rate and every event rate downstream follows) while every
-dispatch does the same work: the node parameters ``<thread>.period`` and ``<thread>.deadline``
-(seconds, read by the generated node at start-up: ``period_of``, ``check_deadline``) are given
-multiplied by ``F`` on the node's command line; execution times (``<thread>.cet_min``,
-``cet_max``) are left alone. The run folder's packages are not regenerated: a run folder runs
-at any scale. The model of such a run is the model with its periods scaled
-(:func:`rosaadl.transforms.time_scale.scale_periods`); ``measurements.json`` records ``F``
-(``run.period_scale``) so that ``analyze --compare`` compares against that model.
+dispatch does the same work: the node parameters ``<thread>.period``, ``<thread>.deadline`` and
+``<thread>.offset`` (Dispatch_Offset; seconds, read by the generated node at start-up:
+``period_of``, ``check_deadline``, ``start_timers``) are given multiplied by ``F`` on the
+node's command line; execution times (``<thread>.cet_min``, ``cet_max``) are left alone. The
+run folder's packages are not regenerated: a run folder runs at any scale. The model of such a
+run is the model with its periods scaled (:func:`rosaadl.transforms.time_scale.scale_periods`);
+``measurements.json`` records ``F`` (``run.period_scale``) so that ``analyze --compare``
+compares against that model.
 
 ``--period-scale auto`` takes the smallest ``F`` (rounded up to a tenth, at least 1) such that
 the predicted load of every CPU of this machine is at most :data:`AUTO_TARGET_PERCENT`: a node's
@@ -41,7 +42,7 @@ __all__ = [
 #: ``--period-scale auto`` keeps every CPU's predicted load at most this (% of one CPU).
 AUTO_TARGET_PERCENT = 60.0
 #: The node parameters (suffixes of ``<thread>.``) a period scale multiplies.
-SCALED_PARAMETERS = (".period", ".deadline")
+SCALED_PARAMETERS = (".period", ".deadline", ".offset")
 
 
 def parse_period_scale(text: str) -> float | None:
