@@ -20,6 +20,8 @@ from rosaadl.workflow.run.measure import (
     read_trace,
     read_traces,
 )
+from rosaadl.workflow.run.measured_window import whole_periods
+from rosaadl.workflow.run.plan import NodeLaunch
 
 MS = 1_000_000  # ns
 
@@ -234,3 +236,22 @@ def test_a_dispatch_left_out_of_the_window_still_keeps_the_executor_busy(executo
     # but it runs at tick's release at 10 ms
     rows = _exe_rows(executor_trace, ["tick"], (1009 * MS + 600 * US, 2000 * MS))
     assert rows["ticker"]["dispatch_latency_us"] == {"min": 1500.0, "mean": 1500.0, "max": 1500.0}
+
+
+def test_the_measured_window_holds_whole_periods_of_every_timer() -> None:
+    """``--measure`` rounds the S seconds up to a whole number of the longest timer period (a
+    10 s window held 33 or 34 releases of a 300 ms timer, as its phase fell: 3 % of that thread's
+    CPU time); a sporadic thread's period, a period longer than S, or a plan without its timers
+    changes nothing."""
+
+    def node(timers, **periods):
+        parameters = [(f"{thread}.period", value) for thread, value in periods.items()]
+        return NodeLaunch("n", "", "p", "n", "s.n", parameters=parameters, timers=timers)
+
+    scaled = [node(["cmd"], cmd=0.3, point=0.3), node(["camera"], camera=0.099999)]
+    assert whole_periods(10.0, scaled) == pytest.approx(10.2)
+    assert whole_periods(9.9, scaled) == pytest.approx(9.9)
+    assert whole_periods(10.0, [node(["cmd"], cmd=0.3, sporadic=0.7)]) == pytest.approx(10.2)
+    assert whole_periods(10.0, [node([], point=0.3)]) == 10.0
+    assert whole_periods(10.0, [node(None, cmd=0.3)]) == 10.0
+    assert whole_periods(0.2, [node(["cmd"], cmd=0.3)]) == 0.2

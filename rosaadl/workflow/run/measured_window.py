@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 from pathlib import Path
@@ -24,7 +25,32 @@ from rosaadl.workflow.run.measure import (
 )
 from rosaadl.workflow.run.profiles import run_profile
 
-__all__ = ["MeasuredWindow"]
+__all__ = ["MeasuredWindow", "whole_periods"]
+
+
+def whole_periods(duration: float, nodes: list[Any]) -> float:
+    """The measured window for ``duration`` seconds of ``nodes`` (the run plan's, periods as
+    scaled): ``duration`` rounded up to a whole number of the longest period of their timers,
+    where that period is at most ``duration``. Every periodic thread is then released as many
+    times in the window whatever phase the window starts at (a 10 s window holds 33 or 34
+    releases of a 300 ms timer: its CPU load measured 3 % apart from one run to the next), and a
+    thread whose period divides the longest one (the usual harmonic periods) exactly so."""
+    longest = max(
+        (
+            float(value)
+            for node in nodes
+            for name, value in node.parameters
+            if name.endswith(".period")
+            and name[: -len(".period")] in (node.timers or ())
+            and isinstance(value, (int, float))
+            and not isinstance(value, bool)
+            and value > 0
+        ),
+        default=0.0,
+    )
+    if not 0 < longest <= duration:
+        return duration
+    return round(math.ceil(duration / longest - 1e-9) * longest, 6)
 
 
 class MeasuredWindow:

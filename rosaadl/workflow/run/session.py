@@ -29,7 +29,7 @@ import json
 import subprocess
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from pyecore.ecore import EObject
@@ -39,7 +39,7 @@ from rosaadl.exporters.rclpy import GenerationOptions, GenerationResult, generat
 from rosaadl.workflow.run.cores import Machine, machine, node_prefix, quietest_cpus, shared_cpus
 from rosaadl.workflow.run.environment import colcon_build, require_ros, run_environment, tail
 from rosaadl.workflow.run.measure import ChainPlan, chain_plans
-from rosaadl.workflow.run.measured_window import MeasuredWindow
+from rosaadl.workflow.run.measured_window import MeasuredWindow, whole_periods
 from rosaadl.workflow.run.monitor import nodes_up, start_monitor, stop_monitor, topic_counts
 from rosaadl.workflow.run.period_scale import auto_period_scale, predicted_cpu_loads, scaled_plan
 from rosaadl.workflow.run.plan import RunError, RunPlan, TopicPlan, run_plan, save_plan
@@ -224,6 +224,10 @@ def run_application(
     logs.mkdir(exist_ok=True)
     here = machine(realtime=options.realtime)
     plan = _scaled(plan, here, options, result, progress)
+    if options.measure and (window_s := whole_periods(options.duration, plan.nodes)) != options.duration:
+        progress(f"measuring {window_s:g} s ({options.duration:g} s to whole periods of the longest timer)")
+        options = replace(options, duration=window_s)
+        result.duration = window_s
     monitor: subprocess.Popen | None = None
     processes: list[NodeProcess] = []
     counts_file = logs / "monitor.json"
