@@ -216,6 +216,7 @@ class _LaunchFile:
     def __init__(self, tree: ast.Module, file: str, warnings: list[Diagnostic]) -> None:
         self.file = file
         self.warnings = warnings
+        self.warned = set(warnings)  # what ``warnings`` holds, for warn()'s de-duplication
         self.imports = module_imports(tree)
         for wrapper in _node_wrappers(tree, self.imports):
             self.imports[wrapper] = _LAUNCH_NODE[0]
@@ -245,7 +246,8 @@ class _LaunchFile:
 
     def warn(self, message: str, node: ast.AST) -> None:
         diagnostic = Diagnostic("warning", message, self.at(node))
-        if diagnostic not in self.warnings:  # a pushed namespace is read once per node of its group
+        if diagnostic not in self.warned:  # a pushed namespace is read once per node of its group
+            self.warned.add(diagnostic)
             self.warnings.append(diagnostic)
 
     def called(self, call: ast.Call) -> str:
