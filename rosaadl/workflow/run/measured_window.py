@@ -35,19 +35,7 @@ def whole_periods(duration: float, nodes: list[Any]) -> float:
     times in the window whatever phase the window starts at (a 10 s window holds 33 or 34
     releases of a 300 ms timer: its CPU load measured 3 % apart from one run to the next), and a
     thread whose period divides the longest one (the usual harmonic periods) exactly so."""
-    longest = max(
-        (
-            float(value)
-            for node in nodes
-            for name, value in node.parameters
-            if name.endswith(".period")
-            and name[: -len(".period")] in (node.timers or ())
-            and isinstance(value, (int, float))
-            and not isinstance(value, bool)
-            and value > 0
-        ),
-        default=0.0,
-    )
+    longest = max((p for node in nodes for p in node.timer_periods().values()), default=0.0)
     if not 0 < longest <= duration:
         return duration
     return round(math.ceil(duration / longest - 1e-9) * longest, 6)

@@ -86,6 +86,17 @@ class NodeLaunch:
     def full_name(self) -> str:
         return f"{self.namespace.rstrip('/')}/{self.name}"
 
+    def timer_periods(self) -> dict[str, float]:
+        """The period in seconds (``<thread>.period``, > 0) of each thread its timers dispatch."""
+        periods = dict(self.parameters)
+        return {
+            thread: float(period)
+            for thread in self.timers or ()
+            if isinstance(period := periods.get(f"{thread}.period"), (int, float))
+            and not isinstance(period, bool)
+            and period > 0
+        }
+
 
 @dataclass
 class TopicPlan:
