@@ -119,5 +119,5 @@ class DeclarativeValues:
         which :func:`~rosaadl.lookup.instances.find_instance` adds last, has none)."""
         if not _model.is_a(obj, "ComponentInstance", "FeatureInstance"):
             return None
-        found, _evaluate, _reference = find_instance(lookup.associations, obj, key, None)
+        found, _evaluate, _reference = find_instance(lookup.associations, obj, key, None, self._nodes)
         return found is not None and found.association is not None

@@ -82,10 +82,17 @@ def instance_node(assoc: Associations, ci: EObject, cache: dict[int, ComponentNo
     return node
 
 
-def find_instance(assoc: Associations, obj: EObject, key: str, binding: Binding | None) -> Finding:
+def find_instance(
+    assoc: Associations,
+    obj: EObject,
+    key: str,
+    binding: Binding | None,
+    cache: dict[int, ComponentNode] | None = None,
+) -> Finding:
     """The value of property ``key`` on instance object ``obj``, computed from the declarative
-    model, with its evaluate and reference callbacks."""
-    cache: dict[int, ComponentNode] = {}
+    model, with its evaluate and reference callbacks; the instances' nodes kept in ``cache``
+    (a caller asking of many objects of one instance passes one for them all)."""
+    cache = {} if cache is None else cache
     resolver = assoc.resolver
     reference = instance_reference
     if _model.is_a(obj, "ComponentInstance"):
