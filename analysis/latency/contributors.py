@@ -110,11 +110,12 @@ class FlowWalk:
         response_times: dict[str, Fraction] | None = None,
         declarative: DeclarativeValues | None = None,
         derived: bool = False,
+        demand: Any = None,
     ) -> None:
         self.reader = reader
         self.declarative = declarative
         self.derived = derived  #: topic chains and refined flows: threads without times add nothing
-        self._demand: Any = None  #: the processor speeds, made when a Reference_Processor asks
+        self.demand = demand  #: the processor speeds (a ResourceDemand) a Reference_Processor asks for
         self.mode = mode
         self.prefs = preferences
         self.legacy = preferences.revision.startswith("2014")
@@ -441,15 +442,10 @@ class FlowWalk:
         either is unknown."""
         if not self.reader.value(component, "Reference_Processor", self.mode):
             return Fraction(1)
-        if self._demand is None:
-            from rosaadl.analysis.demand import ResourceDemand
-
-            root = component
-            while hasattr(root.eContainer(), "componentInstances"):
-                root = root.eContainer()
-            self._demand = ResourceDemand(root, [])
-        reference = self._demand.reference_mips(component, self.mode)
-        processor = self._demand.bindings.physical_processor(component, self.mode)
+        if self.demand is None:
+            return Fraction(1)
+        reference = self.demand.reference_mips(component, self.mode)
+        processor = self.demand.bindings.physical_processor(component, self.mode)
         capacity = self.reader.mips_capacity(processor, self.mode) if processor is not None else 0
         if not reference or not capacity:
             return Fraction(1)

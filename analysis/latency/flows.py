@@ -16,6 +16,7 @@ from collections.abc import Iterable, Sequence
 from fractions import Fraction
 from typing import Any
 
+from rosaadl.analysis.demand import ResourceDemand
 from rosaadl.analysis.instance_values import (
     PropertyReader,
     SystemMode,
@@ -324,10 +325,11 @@ def analyze_latency(
     results: list[LatencyChain] = []
     soms = system_modes(root)
     declarative = DeclarativeValues(root)
+    demand = ResourceDemand(root, [])  # the processor speeds a Reference_Processor asks for, read once
     for som in soms:
         for mode_name, synchronous in _MODES:
             transmission = Transmission(reader, som, declarative)
-            walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative, derived)
+            walk = FlowWalk(reader, som, prefs, transmission, response_times, declarative, derived, demand)
             entries = []
             for name, flow, elements in specs:
                 if flow is not None and not flow_active(flow, elements, som, declarative):
