@@ -22,7 +22,8 @@ from typing import Any
 
 from rosaadl.analysis.instance_values import ProcessorBindings, PropertyReader, category_of
 from rosaadl.errors import RosaadlError
-from rosaadl.model import component_instances, find_classifier, instance_path, qualified_name, root_of
+from rosaadl.model import component_instances, instance_path, is_a, qualified_name, root_of
+from rosaadl.transforms.bind.library import classifier_named, impl_chain, type_chain
 
 __all__ = ["bound_inside", "classes_up", "classifier_name", "covered_cores", "declared_up", "of_class"]
 
@@ -63,30 +64,17 @@ def covered_cores(
 
 def _lineage(holder: Any, name: str) -> set[str]:
     """The classifier ``name`` and every classifier it is or extends, lower-case and qualified;
-    an implementation also stands for its type (OSATE's ``AadlUtil.isSubClassifier``)."""
-    out: set[str] = set()
-    todo: list[tuple[str, Any]] = [(name, None)]
-    while todo:
-        text, context = todo.pop()
-        found = None
-        if getattr(holder, "units", None):
-            try:
-                found = find_classifier(holder, text, context)
-            except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
-                found = None
-        key = (qualified_name(found) if found is not None else text).lower()
-        if key in out:
-            continue
-        out.add(key)
-        if found is None:
-            package, _sep, local = key.rpartition("::")
-            if "." in local:  # Pkg::T.impl without its declaration: its type is Pkg::T
-                out.add(f"{package}::{local.partition('.')[0]}" if package else local.partition(".")[0])
-            continue
-        for step in (getattr(found, "extended", None), getattr(found, "type", None)):
-            if step:
-                todo.append((step if isinstance(step, str) else qualified_name(step), found))
-    return out
+    an implementation also stands for its type (OSATE's ``AadlUtil.isSubClassifier``): the
+    binding transform's ``impl_chain`` and ``type_chain``. A classifier named only as text
+    (``Pkg::T.impl`` the model does not hold) stands for itself and its type ``Pkg::T``."""
+    found = _classifier(holder, name)
+    if found is None:
+        key = name.lower()
+        package, _sep, local = key.rpartition("::")
+        own_type = local.partition(".")[0]
+        return {key, f"{package}::{own_type}" if package else own_type}
+    chain = impl_chain(holder, found) if is_a(found, "ComponentImplementation") else []
+    return {qualified_name(c).lower() for c in chain + type_chain(holder, found)}
 
 
 def of_class(root: Any, classes: list[Any], mode: Any) -> list[Any]:
@@ -101,25 +89,32 @@ def of_class(root: Any, classes: list[Any], mode: Any) -> list[Any]:
         text = item if isinstance(item, str) else getattr(item, "classifier", None) or str(item)
         wanted.add(_canonical(holder, str(text)))
     found = []
+    lineages: dict[str, set[str]] = {}  # one lineage per classifier, however many cores have it
     for ci in component_instances(root, include_root=False):
         if category_of(ci) not in ("processor", "virtualProcessor", "system") or not mode.active(ci):
             continue
-        classifier = ci.classifier if isinstance(ci.classifier, str) else classifier_name(ci)
-        if classifier and _lineage(holder, classifier) & wanted:
+        classifier = classifier_name(ci)
+        if classifier and classifier not in lineages:
+            lineages[classifier] = _lineage(holder, classifier)
+        if classifier and lineages[classifier] & wanted:
             found.append(ci)
     return found
 
 
+def _classifier(holder: Any, name: str) -> Any:
+    """The classifier ``name`` of the declarative model ``holder``; None where it holds none."""
+    if not getattr(holder, "units", None):
+        return None
+    try:
+        return classifier_named(holder, name)
+    except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
+        return None
+
+
 def _canonical(holder: Any, name: str) -> str:
     """``name`` qualified and lower-case (as declared when the model holds it)."""
-    if getattr(holder, "units", None):
-        try:
-            found = find_classifier(holder, name)
-        except (RosaadlError, LookupError, AttributeError, TypeError, ValueError):
-            found = None
-        if found is not None:
-            return qualified_name(found).lower()
-    return name.lower()
+    found = _classifier(holder, name)
+    return (qualified_name(found) if found is not None else name).lower()
 
 
 def declared_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: Any) -> list[Any]:
