@@ -117,14 +117,19 @@ def _canonical(holder: Any, name: str) -> str:
     return (qualified_name(found) if found is not None else name).lower()
 
 
-def declared_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: Any) -> list[Any]:
-    """The targets of a binding property on ``obj``, else on its nearest container that has one."""
+def _inherited(obj: Any, root: Any, read: Any) -> list[Any]:
+    """``read(obj)``, else ``read`` of its nearest container below ``root`` that gives a value."""
     while obj is not None and obj is not root:
-        found = reader.targets(obj, name, mode)
+        found = read(obj)
         if found:
             return found
         obj = obj.eContainer()
     return []
+
+
+def declared_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: Any) -> list[Any]:
+    """The targets of a binding property on ``obj``, else on its nearest container that has one."""
+    return _inherited(obj, root, lambda o: reader.targets(o, name, mode))
 
 
 def bound_inside(reader: PropertyReader, unit: Any, own: list[Any], mode: Any) -> list[tuple[Any, list[Any]]]:
@@ -144,10 +149,9 @@ def bound_inside(reader: PropertyReader, unit: Any, own: list[Any], mode: Any) -
 def classes_up(reader: PropertyReader, obj: Any, mode: Any, root: Any) -> list[Any]:
     """``Allowed_Processor_Binding_Class`` of ``obj``, else of its nearest container that has one
     (the property is inherited)."""
-    while obj is not None and obj is not root:
-        value = reader.value(obj, "Deployment_Properties::Allowed_Processor_Binding_Class", mode)
-        items = value if isinstance(value, list) else [value] if value is not None else []
-        if items:
-            return items
-        obj = obj.eContainer()
-    return []
+
+    def classes(o: Any) -> list[Any]:
+        value = reader.value(o, "Deployment_Properties::Allowed_Processor_Binding_Class", mode)
+        return value if isinstance(value, list) else [value] if value is not None else []
+
+    return _inherited(obj, root, classes)
