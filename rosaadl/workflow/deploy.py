@@ -98,8 +98,8 @@ def _proposed_text(proposal: DeploymentProposal, implementation: EObject, name: 
 
     owned = implementation.ownedPropertyAssociations
     kept = list(owned)
-    applied = {id(a): list(a.appliesTo) for a in kept}
     bindings = [a for a in kept if (a.property or "").rpartition("::")[2].lower() == _BINDING.lower()]
+    applied = {id(a): list(a.appliesTo) for a in bindings}  # what the writing changes, to put back
     added = [_association(c, u) for u, c in pairs]
     old_name = package.name
     try:

@@ -218,7 +218,7 @@ def _settled_rates(
     topics: dict[str, TopicPlan],
     out_ends: list[tuple[str, NodeInstance, str]],
     triggers: dict[tuple[int, str], list[str]],
-    services: tuple[list[tuple[str, NodeInstance, str]], dict[tuple[int, str], list[str]]] = ([], {}),
+    services: tuple[list[tuple[str, NodeInstance, str]], dict[tuple[int, str], list[str]]],
 ) -> dict[str, float | None]:
     """Topic rates propagated through the dispatching in ports and the service calls (``services``:
     the (service, node, thread) calls and, per thread, the services it serves) until they no
