@@ -210,6 +210,8 @@ class _Reader:
                 for target in targets:
                     if isinstance(target, ast.Name):
                         names[target.id] = value
+            elif isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                names[stmt.name] = Known(UNKNOWN)  # its body's names are its own, not the module's
             else:
                 for name in stored_names(stmt):  # a name set again in a branch or loop is not known
                     names[name] = Known(UNKNOWN)
@@ -719,14 +721,14 @@ class _Reader:
                 body=script,
                 decorator_list=[],
             )
-            called = {
+            called = dict.fromkeys(  # a fixed order (ast.walk's), not a set's
                 n.func.id
                 for s in script
                 for n in ast.walk(s)
                 if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
-            }
+            )
             made = [n for n in called if n in by_name]
-            for function in sorted(called & set(self.result.functions)):
+            for function in sorted(set(called) & set(self.result.functions)):
                 made.extend(self.result.functions[function])
             self.result.functions[SCRIPT] = made
             for key, fact in self.read_function(module):

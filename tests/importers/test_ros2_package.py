@@ -4,6 +4,8 @@ written as the ROS 2 tutorials write them), on code with extra parts, and on bad
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from decimal import Decimal
 from pathlib import Path
 
@@ -150,6 +152,45 @@ def test_helpers_extra_parameters_and_one_shot_timers_are_tolerated(tmp_path):
     ]
 
 
+SHADOWED = """import rclpy
+from rclpy.node import Node
+from std_msgs.msg import String
+
+TOPIC = 'chatter'
+
+
+def helper():
+    TOPIC = 'other'
+    return TOPIC
+
+
+class Talker(Node):
+    LABEL = 'x'
+
+    def __init__(self):
+        super().__init__('talker')
+        self.pub = self.create_publisher(String, TOPIC, 10)
+
+
+def main():
+    rclpy.init()
+    rclpy.spin(Talker())
+"""
+
+
+def test_a_module_constant_is_not_lost_to_a_local_of_the_same_name(tmp_path):
+    """A function's or class's own names are not the module's: the constant TOPIC stays known
+    though ``helper`` binds a local TOPIC (it was "not known" once definitions counted)."""
+    package = tmp_path / "talk_pkg"
+    (package / "talk_pkg").mkdir(parents=True)
+    (package / "package.xml").write_text("<package format='3'><name>talk_pkg</name></package>")
+    (package / "talk_pkg" / "talker.py").write_text(SHADOWED)
+    warnings: list = []
+    comps = _components(read_ros2_packages([package], warnings))
+    assert _ports(comps["talker"]) == [("Publisher", "std_msgs/String", "/chatter")]
+    assert not [w for w in warnings if "TOPIC" in w.message], warnings
+
+
 # --------------------------------------------------------------------------- bad input
 
 
@@ -277,3 +318,50 @@ def test_a_launch_node_through_a_wrapper_that_passes_its_keywords_on():
         ("p", "e", "renamed", {"a": "b"})
     ]
     assert warnings == []
+
+
+SCRIPT_MAKES_THREE = """import rclpy
+from rclpy.node import Node
+
+
+class Alpha(Node):
+    def __init__(self):
+        super().__init__('alpha')
+
+
+class Beta(Node):
+    def __init__(self):
+        super().__init__('beta')
+
+
+class Gamma(Node):
+    def __init__(self):
+        super().__init__('gamma')
+
+
+rclpy.init()
+nodes = [Alpha(), Beta(), Gamma()]
+"""
+
+_READ_SCRIPT = """
+import ast, sys
+from rosaadl.importers.ros2_package.node_classes import SCRIPT, read_module
+module = read_module(ast.parse(sys.argv[1]), "three.py", "pkg", [])
+print(module.functions[SCRIPT])
+"""
+
+
+def test_the_nodes_a_script_makes_come_in_one_order_whatever_the_hash_seed():
+    """The classes a module run as a script makes are listed in the order the source has them,
+    the same under every string hash seed (a set's order changed from run to run)."""
+    seen = set()
+    for seed in ("1", "2", "3"):
+        done = subprocess.run(
+            [sys.executable, "-c", _READ_SCRIPT, SCRIPT_MAKES_THREE],
+            capture_output=True,
+            text=True,
+            env={**os.environ, "PYTHONHASHSEED": seed},
+            check=True,
+        )
+        seen.add(done.stdout.strip())
+    assert seen == {"['Alpha', 'Beta', 'Gamma']"}
