@@ -38,7 +38,7 @@ from rosaadl.importers.ros2_package.launching import (
     launch_actions,
     setup_cfg_entry_points,
 )
-from rosaadl.importers.ros2_package.node_classes import ModuleNodes, read_module
+from rosaadl.importers.ros2_package.node_classes import ModuleNodes, class_files, read_module
 from rosaadl.importers.ros2_package.package_classes import abstract_classes, outside_classes, resolved_imports
 from rosaadl.importers.ros2_package.sources import (
     MAX_DEPTH,
@@ -187,6 +187,8 @@ def _read_modules(
         abstract = abstract_classes(modules, outside)
     except RecursionError:
         outside, abstract = {}, set()
+    files = class_files(outside)
+    constants = {q.rpartition(".")[0]: item.constants for q, item in outside.items()}
     for tree, path, relative in sources:
         name = _module_name(relative)
         try:
@@ -198,6 +200,8 @@ def _read_modules(
                 imports=dict(modules[name][1]),
                 outside=outside,
                 bases_only={q.rpartition(".")[2] for q in abstract if q.rpartition(".")[0] == name},
+                files=files,
+                constants=constants.get(name),
             )
         except RecursionError:
             _too_deep(str(path), warnings)

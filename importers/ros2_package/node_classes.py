@@ -160,6 +160,8 @@ class _Reader:
         imports: dict[str, str] | None = None,
         outside: dict[str, OutsideClass] | None = None,
         bases_only: set[str] | None = None,
+        files: dict[int, str] | None = None,
+        constants: dict[str, Known] | None = None,
     ) -> None:
         self.bases_only = bases_only or set()
         self.tree = tree
@@ -168,13 +170,8 @@ class _Reader:
         self.package = package
         self.imports = module_imports(tree) if imports is None else imports
         self.outside = outside or {}
-        self.files = {
-            id(n): item.file
-            for item in self.outside.values()
-            for n in ast.walk(item.cls)
-            if item.file != file
-        }
-        self.constants = self._module_constants()
+        self.files = class_files(self.outside) if files is None else files
+        self.constants = self._module_constants() if constants is None else dict(constants)
         self.consumed: set[int] = set()  # ids of the create_* calls read into a node
         self.result = ModuleNodes()
         self._lineages: dict[int, list[OutsideClass]] = {}  # id of a class -> its lineage
@@ -818,14 +815,24 @@ def read_module(
     imports: dict[str, str] | None = None,
     outside: dict[str, OutsideClass] | None = None,
     bases_only: set[str] | None = None,
+    files: dict[int, str] | None = None,
+    constants: dict[str, Known] | None = None,
 ) -> ModuleNodes:
     """The nodes ``tree`` (the module ``file`` of ROS package ``package``) defines; ``imports``:
     what its names stand for (relative imports resolved), ``outside``: the node classes of the
     package's other modules by qualified name (``pkg.base.BaseNode``); ``bases_only``: the
-    classes of the module that are bases of other node classes only (not nodes themselves)."""
+    classes of the module that are bases of other node classes only (not nodes themselves);
+    ``files``: :func:`class_files` of ``outside``, ``constants``: the module's
+    :func:`module_constants`, where the caller has them already (one package's modules share
+    them)."""
     if outside is None:  # a package's modules are marked once, before any is read
         mark_assignments(tree)
-    return _Reader(tree, file, warnings, package, imports, outside, bases_only).read()
+    return _Reader(tree, file, warnings, package, imports, outside, bases_only, files, constants).read()
+
+
+def class_files(outside: dict[str, OutsideClass]) -> dict[int, str]:
+    """Each AST node of the classes ``outside`` (by id) → the file of its module."""
+    return {id(n): item.file for item in outside.values() for n in ast.walk(item.cls)}
 
 
 def module_constants(tree: ast.Module, imports: dict[str, str]) -> dict[str, Known]:
