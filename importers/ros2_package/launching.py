@@ -399,6 +399,11 @@ def _group_namespaces(tree: ast.Module, launch: _LaunchFile) -> dict[int, list[s
             return None
         return holder if isinstance(holder, ast.Call) and launch.called(holder) == "GroupAction" else None
 
+    loads: dict[str, list[ast.Name]] = {}  # each name → where it is read, in ast.walk's order
+    for use in ast.walk(tree):
+        if isinstance(use, ast.Name) and isinstance(use.ctx, ast.Load):
+            loads.setdefault(use.id, []).append(use)
+
     def groups(node: ast.AST, seen: frozenset[str] = frozenset()) -> list[str | None]:
         """The namespaces pushed on ``node`` by the groups around it (or around a name of it)."""
         current = node
@@ -411,11 +416,10 @@ def _group_namespaces(tree: ast.Module, launch: _LaunchFile) -> dict[int, list[s
                 parent.targets[0] if isinstance(parent, ast.Assign) and len(parent.targets) == 1 else None
             )
             if isinstance(target, ast.Name) and target.id not in seen:
-                for use in ast.walk(tree):
-                    if isinstance(use, ast.Name) and use.id == target.id and isinstance(use.ctx, ast.Load):
-                        outer = groups(use, seen | {target.id})
-                        if outer:
-                            return outer
+                for use in loads.get(target.id, ()):
+                    outer = groups(use, seen | {target.id})
+                    if outer:
+                        return outer
                 return []
             current = parent
         return []
