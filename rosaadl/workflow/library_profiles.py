@@ -235,10 +235,13 @@ class ProfileBuilder:
         old = existing.get(package_name.lower())
         if old is not None:
             again = set()  # what the nodes measured again had on those PDMs: theirs, their threads'
+            names_of: dict[int, list[str | None]] = {}  # per node: its alias, its thread types
             for (_node, pdm), pdm_rows in by_pdm.items():
                 node = pdm_rows[0].node
-                names = [node_aliases.get(id(node.ctype)), *self._thread_type_names(node)]
-                again |= {f"{(name or '').lower()}.{pdm}" for name in names}
+                key = id(node.ctype)
+                if key not in names_of:
+                    names_of[key] = [node_aliases.get(key), *self._thread_type_names(node)]
+                again |= {f"{(name or '').lower()}.{pdm}" for name in names_of[key]}
             classifiers = self._merge(unit, old, classifiers, again)
         unit.classifiers.extend(sorted(classifiers, key=_pdm_order))
         implementations.extend(made)
