@@ -515,15 +515,18 @@ def deployment_problem(
         return actual if actual > 0 else analysis.memory_budget(obj, "RAM", mode)
 
     unit_objs: list[Any] = []
+    unit_threads: list[list[Any]] = []  # the threads inside each unit (none for a thread unit)
     units: list[Unit] = []
     for obj in process_objs:
         threads = [t for t in component_instances(obj, include_root=False) if category_of(t) == "thread"]
         if granularity == "thread" and threads:
             for t in threads:
                 unit_objs.append(t)
+                unit_threads.append([])
                 units.append(Unit(instance_path(t), [thread_of(t)], reader.mips_budget(t, mode), memory(t)))
         else:
             unit_objs.append(obj)
+            unit_threads.append(threads)
             units.append(
                 Unit(
                     instance_path(obj),
@@ -575,12 +578,11 @@ def deployment_problem(
         classes = classes_up(reader, obj, mode, root)
         restrictions = [(declared, classes, "")]
         # a thread's own restriction holds for the process it is bound with (OSATE checks threads)
-        for thread in component_instances(obj, include_root=False) if obj is not None else []:
-            if category_of(thread) != "thread":
-                continue
+        declared_paths = [instance_path(t) for t in declared]
+        for thread in unit_threads[u]:
             mine = reader.targets(thread, "Allowed_Processor_Binding", mode) or []
             kinds = classes_up(reader, thread, mode, obj)
-            if [instance_path(t) for t in mine] != [instance_path(t) for t in declared] and mine:
+            if mine and [instance_path(t) for t in mine] != declared_paths:
                 restrictions.append((mine, [], f" of {relative_path(thread)}"))
             if kinds and kinds != classes:
                 restrictions.append(([], kinds, f" of {relative_path(thread)}"))
@@ -618,7 +620,7 @@ def deployment_problem(
         allowed_lists.append(sorted(chosen))
         own = declared_up(reader, obj, "Actual_Processor_Binding", mode, root)
         actual = covered_cores(own, index, bindings, mode)
-        inside = bound_inside(reader, obj, own, mode)
+        inside = bound_inside(reader, unit_threads[u], own, mode)
         if inside:
             restated[u] = tuple(instance_path(t) for t, _targets in inside)
             if not actual:  # the threads are bound, not the process: where they are now

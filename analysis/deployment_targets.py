@@ -132,14 +132,15 @@ def declared_up(reader: PropertyReader, obj: Any, name: str, mode: Any, root: An
     return _inherited(obj, root, lambda o: reader.targets(o, name, mode))
 
 
-def bound_inside(reader: PropertyReader, unit: Any, own: list[Any], mode: Any) -> list[tuple[Any, list[Any]]]:
-    """The threads of ``unit`` whose ``Actual_Processor_Binding`` is not the unit's (their own
-    value, which beats the one a thread inherits from its process), with their targets."""
+def bound_inside(
+    reader: PropertyReader, threads: list[Any], own: list[Any], mode: Any
+) -> list[tuple[Any, list[Any]]]:
+    """The ``threads`` of a unit whose ``Actual_Processor_Binding`` is not the unit's (``own``:
+    their own value, which beats the one a thread inherits from its process), with their
+    targets."""
     mine = [instance_path(t) for t in own]
     out = []
-    for thread in component_instances(unit, include_root=False):
-        if category_of(thread) != "thread":
-            continue
+    for thread in threads:
         found = reader.targets(thread, "Actual_Processor_Binding", mode) or []
         if found and [instance_path(t) for t in found] != mine:
             out.append((thread, found))
