@@ -181,10 +181,7 @@ def main():
 def test_a_module_constant_is_not_lost_to_a_local_of_the_same_name(tmp_path):
     """A function's or class's own names are not the module's: the constant TOPIC stays known
     though ``helper`` binds a local TOPIC (it was "not known" once definitions counted)."""
-    package = tmp_path / "talk_pkg"
-    (package / "talk_pkg").mkdir(parents=True)
-    (package / "package.xml").write_text("<package format='3'><name>talk_pkg</name></package>")
-    (package / "talk_pkg" / "talker.py").write_text(SHADOWED)
+    package = _package(tmp_path, "<package format='3'><name>pkg</name></package>", SHADOWED)
     warnings: list = []
     comps = _components(read_ros2_packages([package], warnings))
     assert _ports(comps["talker"]) == [("Publisher", "std_msgs/String", "/chatter")]
