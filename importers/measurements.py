@@ -41,13 +41,14 @@ __all__ = [
 
 FORMAT = "rosaadl-measurements"
 #: The version this release writes; it reads every one of :data:`KNOWN_VERSIONS`.
-VERSION = 3
-KNOWN_VERSIONS = (1, 2, 3)
+VERSION = 4
+KNOWN_VERSIONS = (1, 2, 3, 4)
 #: What each version added, as (group, member): a file of an earlier version holding one was
 #: edited by hand.
 _NEW_IN: tuple[tuple[int, tuple[tuple[str, str], ...]], ...] = (
     (2, (("run", "period_scale"), ("processes", "profile"))),
     (3, (("threads", "dispatch_latency_us"),)),
+    (4, (("threads", "twin"), ("processes", "twin_speed"))),
 )
 #: a measurements file larger than this is refused before it is read
 MAX_FILE_BYTES = 64 * 1024 * 1024
@@ -85,7 +86,9 @@ class ThreadMeasurement:
     """One thread's dispatches: release period (mean, jitter), execution time (CPU time of its
     own thread), response time (release to end), deadline misses; times in µs.
     ``dispatch_latency_us``: release to start of its timer dispatches released while its
-    executor was idle (version 3; None: not a timer thread, or no such dispatch)."""
+    executor was idle (version 3; None: not a timer thread, or no such dispatch).
+    ``twin_execution_time_us`` and ``twin_speed``: the workload twin's mean CPU time burned per
+    dispatch and its speed gauge (iterations per ms of CPU; version 4, None: no twin ran)."""
 
     path: str
     process: str | None
@@ -97,6 +100,8 @@ class ThreadMeasurement:
     deadline_us: float | None
     deadline_misses: int
     dispatch_latency_us: Statistics | None = None
+    twin_execution_time_us: float | None = None
+    twin_speed: float | None = None
 
     @property
     def load_percent(self) -> float | None:
@@ -109,7 +114,9 @@ class ThreadMeasurement:
 @dataclass(frozen=True)
 class ProcessMeasurement:
     """One process (ROS node): its CPU load from ``/proc`` (all its threads: callbacks,
-    executor, serialization, DDS) and the host core it ran on (None: not bound)."""
+    executor, serialization, DDS) and the host core it ran on (None: not bound);
+    ``twin_speed``: the workload twin's speed gauge over its threads (version 4, None: no twin
+    ran), see :func:`rosaadl.workflow.run.measure.twin_speed`."""
 
     path: str
     node: str | None
@@ -117,6 +124,7 @@ class ProcessMeasurement:
     core: int | None
     classifier: str | None = None  #: the model's classifier of the process (``Pkg::type.impl``)
     profile: tuple[str, str] | None = None  #: (board, core) a profile of it is named after
+    twin_speed: float | None = None
 
 
 @dataclass(frozen=True)
@@ -208,6 +216,8 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
             deadline_us=t.get("deadline_us"),
             deadline_misses=int(t["deadline_misses"]),
             dispatch_latency_us=Statistics.of(t.get("dispatch_latency_us")),
+            twin_execution_time_us=t["twin"]["execution_time_us"] if "twin" in t else None,
+            twin_speed=t["twin"]["speed"] if "twin" in t else None,
         )
         for t in document["threads"]
     )
@@ -219,6 +229,7 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
             p.get("core"),
             p.get("classifier"),
             (p["profile"]["board"], p["profile"]["core"]) if "profile" in p else None,
+            p.get("twin_speed"),
         )
         for p in document["processes"]
     )

@@ -40,7 +40,7 @@ def test_the_sample_reads_into_typed_rows(tmp_path) -> None:
 
 def test_the_schema_is_versioned_and_documents_every_member() -> None:
     schema = measurements_schema()
-    assert schema["properties"]["version"] == {"enum": [1, 2, 3]}
+    assert schema["properties"]["version"] == {"enum": [1, 2, 3, 4]}
     assert set(schema["$defs"]) >= {"thread", "process", "topic", "chain", "statistics"}
 
 
@@ -124,6 +124,27 @@ def test_a_hand_edited_value_is_refused_at_its_json_path_and_line() -> None:
             "$.threads[0].dispatch_latency_us",
             "missing 'mean'",
         ),
+        # what version 4 added, in a version 3 file, or edited wrong
+        (
+            lambda d: d.update(version=3) or d["processes"][1].update(twin_speed=331.2),
+            "$.processes[1].twin_speed",
+            "a member of version 4 in a version 3 file",
+        ),
+        (
+            lambda d: d.update(version=3) or d["threads"][1].update(twin=_TWIN),
+            "$.threads[1].twin",
+            "a member of version 4 in a version 3 file",
+        ),
+        (
+            lambda d: d.update(version=4) or d["processes"][0].update(twin_speed=0),
+            "$.processes[0].twin_speed",
+            "not above 0",
+        ),
+        (
+            lambda d: d.update(version=4) or d["threads"][0].update(twin={"speed": 331.2}),
+            "$.threads[0].twin",
+            "missing 'execution_time_us'",
+        ),
     ],
 )
 def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
@@ -138,8 +159,8 @@ def test_edits_that_break_the_schema_are_located(edit, path, words) -> None:
 
 def test_an_unknown_version_is_named() -> None:
     document = tracking_measurements()
-    document["version"] = 4
-    with pytest.raises(ParseError, match=r"version 4 is not known \(this release reads 1, 2 and 3\)"):
+    document["version"] = 5
+    with pytest.raises(ParseError, match=r"version 5 is not known \(this release reads 1, 2, 3 and 4\)"):
         parse_measurements(json.dumps(document))
 
 
@@ -154,6 +175,18 @@ def test_version_2_records_the_period_scale_and_the_profile_of_each_process() ->
 
 
 _LATENCY = {"min": 612.5, "mean": 1034.25, "max": 4871.2}
+_TWIN = {"execution_time_us": 2210.5, "speed": 331.2}
+
+
+def test_version_4_records_the_workload_twin_of_threads_and_processes() -> None:
+    document = tracking_measurements()
+    document["version"] = 4
+    document["threads"][0]["twin"] = _TWIN
+    document["processes"][0]["twin_speed"] = 331.2
+    read = parse_measurements(tracking_measurements_text(document))
+    assert (read.threads[0].twin_execution_time_us, read.threads[0].twin_speed) == (2210.5, 331.2)
+    assert (read.threads[1].twin_execution_time_us, read.threads[1].twin_speed) == (None, None)
+    assert [p.twin_speed for p in read.processes] == [331.2, None]
 
 
 def test_version_3_records_the_dispatch_latency_of_timer_threads() -> None:

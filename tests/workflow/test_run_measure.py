@@ -55,8 +55,9 @@ def _write(folder, name, lines):
 
 @pytest.fixture
 def traces(tmp_path):
-    """cam publishes /image every 10 ms; trk handles each image (2 ms CPU) and publishes /point
-    from a 20 ms timer; cmd receives /point. Times in ns from 1 s."""
+    """cam publishes /image every 10 ms; trk handles each image (2 ms CPU, 1.5 ms of it burned
+    by the workload twin in 600 loops) and publishes /point from a 20 ms timer; cmd receives
+    /point. Times in ns from 1 s."""
     t0 = 1000 * MS
     cam = ["N /cam", "T pub camera_thread", "O /image camera_thread.out"]
     trk = ["N /trk", "T work tracker", "T send sender", "O /point sender.out"]
@@ -66,13 +67,16 @@ def traces(tmp_path):
         cam.append(f"D pub {release} {release + MS // 10} {release + MS} {MS}")
         cam.append(f"P /image {k + 1} {release + MS} {release}")
         trk.append(f"R /image {k + 1} {release + MS} {release + 2 * MS}")
-        trk.append(f"D work {release + 2 * MS} {release + 2 * MS} {release + 4 * MS} {2 * MS}")
+        trk.append(
+            f"D work {release + 2 * MS} {release + 2 * MS} {release + 4 * MS} {2 * MS} 600 {3 * MS // 2}"
+        )
     for j in range(5):
         release = t0 + j * 20 * MS + 5 * MS
         trk.append(f"D send {release} {release} {release + MS} {MS // 2}")
         trk.append(f"P /point {j + 1} {release + MS} {release}")
         cmd.append(f"R /point {j + 1} {release + MS} {release + 3 * MS}")
     cmd.append("D recv 5 6")  # a line cut short by a killed node
+    cmd.append(f"D recv {t0} {t0} {t0 + MS} {MS} 600")  # the twin's gauge cut short
     _write(tmp_path, "cam", cam)
     _write(tmp_path, "trk", trk)
     _write(tmp_path, "cmd", cmd)
@@ -92,7 +96,7 @@ TOPICS = [
 
 def test_a_trace_is_read_and_a_cut_line_counted(traces) -> None:
     trace = read_trace(traces / "cmd.1.trace")
-    assert trace.node == "/cmd" and trace.bad_lines == 1
+    assert trace.node == "/cmd" and trace.bad_lines == 2
     assert len(trace.received["/point"]) == 5
 
 
@@ -145,7 +149,12 @@ def test_the_document_validates_and_holds_threads_processes_topics_chains(traces
     assert read.topics[0].port == "top_Instance.sw.cam.camera_thread.out"
     assert read.topics[0].bandwidth_bytes_per_s == 6400.0
     assert read.chains[0].samples == 5 and read.chains[0].latency_us.mean == 7000.0
-    assert document["version"] == 3
+    assert document["version"] == 4
+    # the workload twin of trk's work thread: 1.5 ms burned per dispatch, 600 loops per 1.5 ms
+    work = next(t for t in read.threads if t.path == "top_Instance.sw.trk.tracker")
+    assert (work.twin_execution_time_us, work.twin_speed) == (1500.0, 400.0)
+    assert camera.twin_speed is None and "twin" not in document["threads"][0]
+    assert [p.twin_speed for p in read.processes] == [None, 400.0]
     # a plan that does not say which threads run on a timer: no dispatch latency is claimed
     assert all("dispatch_latency_us" not in row for row in document["threads"])
 

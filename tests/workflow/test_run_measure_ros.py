@@ -69,6 +69,21 @@ def test_every_emulated_thread_burns_its_cet(compared) -> None:
     assert all(abs(i["error_percent"]) < FIDELITY for i in cet), cet
 
 
+def test_every_emulated_thread_and_process_gauges_the_cpu_speed(measured) -> None:
+    read = read_measurements(measured)
+    emulated = [t for t in read.threads if t.twin_speed is not None]
+    assert {t.path.rpartition(".")[2] for t in emulated} == {
+        "image_broadcaster",
+        "image_tracker",
+        "cmd_publisher",
+    }
+    for thread in emulated:  # the twin burned most of each dispatch, never more than all of it
+        assert 0.5 * thread.execution_time_us.mean < thread.twin_execution_time_us
+        assert thread.twin_execution_time_us <= thread.execution_time_us.mean
+        assert 50 < thread.twin_speed < 5000  # loops of a few µs of Python each, per CPU ms
+    assert all(p.twin_speed is not None for p in read.processes)
+
+
 def test_per_process_loads_and_the_middleware_are_compared(compared) -> None:
     quantities = {(i["path"].rpartition(".")[2], i["quantity"]) for i in compared}
     for process in ("usbcam", "tracker", "poscmd"):

@@ -5,7 +5,7 @@ With the node parameter ``rosaadl.trace`` true, each generated node writes
 ``<run folder>/trace/<node>.<pid>.trace`` (the ``Tracer`` of the generated code): a header
 (``N`` its name, ``T ident thread`` its threads, ``O topic port`` its out ports) then one line
 per event, times from the system-wide ``CLOCK_MONOTONIC``:
-``D thread release start end cpu``, ``P topic seq published dispatch_start``,
+``D thread release start end cpu [loops burned]``, ``P topic seq published dispatch_start``,
 ``R topic seq published received``. Only events inside the measured window (from the moment
 every node is up to the stop) count.
 
@@ -13,11 +13,13 @@ every node is up to the stop) count.
   execution time (CPU time of the dispatch's own thread), response time (release to end),
   deadline misses (the node's ``<thread>.deadline`` parameter); for a thread on a periodic
   timer, its dispatch latency (:func:`idle_dispatch_latencies`: release to start of the
-  dispatches released while its executor was idle);
+  dispatches released while its executor was idle); where the workload twin ran, its ``twin``:
+  the mean CPU time it burned per dispatch and its gauge's speed (:func:`twin_speed`);
 * per process: CPU load, the CPU time of its threads over the window (the scheduler's count of
   each thread, ``/proc/PID/task/TID/schedstat``, in ns; ``/proc/PID/stat``'s user + system
   time, in 10 ms ticks, where the kernel keeps no such count) and the core it was bound to
-  (its CPU affinity, when it is one core);
+  (its CPU affinity, when it is one core); where the twin ran, its ``twin_speed`` (the gauge
+  over all its threads' dispatches);
 * per topic: messages, rate, bytes per message (the run's monitor) and bandwidth, with the model
   port that publishes it;
 * per chain (a flow of the model as processes in order): end-to-end latency, each message on the
@@ -55,6 +57,7 @@ __all__ = [
     "chain_plans",
     "planned_chains",
     "idle_dispatch_latencies",
+    "twin_speed",
 ]
 
 #: The folder of the run folder the nodes write their traces into.
@@ -83,6 +86,8 @@ class NodeTrace:
     #: or end lies outside): they kept the executor busy at the window's edges
     edges: list[tuple[int, int]] = field(default_factory=list)
     published: dict[tuple[str, int], int] = field(default_factory=dict)  # (topic, seq) -> dispatch start
+    #: thread ident -> (dispatches, gauge loops, CPU ns burned) of the workload twin in the window
+    twin: dict[str, tuple[int, int, int]] = field(default_factory=dict)
     received: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)  # topic -> (recv, seq, pub)
     bad_lines: int = 0
 
@@ -111,10 +116,13 @@ def read_trace(path: Path, window: tuple[int, int] | None = None) -> NodeTrace:
                 trace.threads[parts[1]] = parts[2]
             elif kind == "O" and len(parts) == 3:
                 trace.ports[parts[1]] = parts[2]
-            elif kind == "D" and len(parts) == 6:
-                release, start, end, cpu = (int(p) for p in parts[2:])
+            elif kind == "D" and len(parts) in (6, 8):
+                release, start, end, cpu, *burned = (int(p) for p in parts[2:])
                 if low <= release and end <= high:
                     trace.dispatches.setdefault(parts[1], []).append((release, start, end, cpu))
+                    if burned:
+                        count, loops, ns = trace.twin.get(parts[1], (0, 0, 0))
+                        trace.twin[parts[1]] = (count + 1, loops + burned[0], ns + burned[1])
                 elif end >= low and start <= high:
                     trace.edges.append((start, end))
             elif kind == "P" and len(parts) == 5:
@@ -220,15 +228,26 @@ def idle_dispatch_latencies(
     return out
 
 
+def twin_speed(loops: int, cpu_ns: int) -> float | None:
+    """The speed gauge of the workload twin: iterations of its burning loop (``twin_gauge`` of
+    the generated code, a few µs of Python object work each) per ms of the CPU time they took,
+    None without any. The twin burns each dispatch's execution time as CPU time, whatever the
+    CPU's speed; the executor, serialization and DDS do work, whose CPU time grows as the CPU
+    slows (a throttled or shared CPU): two runs are comparable where their gauges agree."""
+    return round(loops / cpu_ns * 1e6, 3) if loops > 0 and cpu_ns > 0 else None
+
+
 def _thread_row(
     process_path: str,
     thread: str,
     events: list,
     deadline_s: float | None,
     spans: list[tuple[int, int]] | None = None,
+    twin: tuple[int, int, int] | None = None,
 ) -> dict[str, Any]:
     """One thread's row; ``spans``: ``(start, end)`` of every dispatch of its process when the
-    thread runs on a periodic timer (its dispatch latency is measured), else None."""
+    thread runs on a periodic timer (its dispatch latency is measured), else None; ``twin``: the
+    workload twin's (dispatches, loops, CPU ns) where it ran."""
     events = sorted(events)
     releases = [e[0] for e in events]
     gaps = [(b - a) / 1000 for a, b in itertools.pairwise(releases)]
@@ -249,6 +268,11 @@ def _thread_row(
         row["deadline_us"] = round(deadline_us, 3)
     if spans is not None:
         row["dispatch_latency_us"] = _stats(idle_dispatch_latencies(events, spans))
+    if twin is not None and twin_speed(twin[1], twin[2]) is not None:
+        row["twin"] = {
+            "execution_time_us": round(twin[2] / twin[0] / 1000, 3),
+            "speed": twin_speed(twin[1], twin[2]),
+        }
     return row
 
 
@@ -321,6 +345,12 @@ def measurements_document(
             if node.full_name in profiles:
                 board, core = profiles[node.full_name]
                 row["profile"] = {"board": board, "core": core}
+            if trace is not None:
+                speed = twin_speed(
+                    sum(t[1] for t in trace.twin.values()), sum(t[2] for t in trace.twin.values())
+                )
+                if speed is not None:
+                    row["twin_speed"] = speed
             processes.append(row)
         if trace is None:
             continue
@@ -339,6 +369,7 @@ def measurements_document(
                     trace.dispatches.get(ident, []),
                     deadline_s,
                     spans if ident in timers else None,
+                    trace.twin.get(ident),
                 )
             )
     topic_rows = []
