@@ -12,6 +12,11 @@ measured (``measurements.json``, :mod:`rosaadl.importers.measurements`), with th
   ``/proc``), ``callback_cpu_load_percent`` (the same prediction vs its measured threads' own
   CPU time) and ``middleware_cpu_load_percent`` (what the model does not hold: the process's
   CPU time beyond its callbacks, spent in the executor, serialization and DDS; no prediction);
+  where its threads' profiles carry the workload twin's values (``ROS_Properties::
+  Twin_Execution_Time`` and ``Twin_Speed``, a profile of an emulated run) and the run measured
+  the twin's speed gauge, ``cpu_load_at_run_speed_percent`` too: :func:`load_at_speed`, the
+  prediction with what is not the twin's burned time rescaled to the run's CPU speed (a
+  warning says when the two speeds differ by more than :data:`SPEED_TOLERANCE`);
 * per processor or core: ``cpu_load_percent`` (its threads' utilisation vs the measured load of
   what is bound to it);
 * per out port with a measured topic: ``bandwidth_kbps`` (``Data_Size`` × rate, KB/s);
@@ -49,7 +54,21 @@ from rosaadl.model import component_instances, find_instance, instance_path
 from rosaadl.properties import property_value
 from rosaadl.units import standard_units
 
-__all__ = ["ComparedItem", "ComparisonResult", "compare_measurements", "compare_text", "compare_csv"]
+__all__ = [
+    "ComparedItem",
+    "ComparisonResult",
+    "SPEED_TOLERANCE",
+    "load_at_speed",
+    "compare_measurements",
+    "compare_text",
+    "compare_csv",
+]
+
+#: Profile and run whose twin speed gauges differ by more than this part ran at different CPU
+#: speeds (a warning says so).
+SPEED_TOLERANCE = 0.05
+_TWIN_EXECUTION_TIME = "ROS_Properties::Twin_Execution_Time"
+_TWIN_SPEED = "ROS_Properties::Twin_Speed"
 
 _HEADERS = ("path", "quantity", "predicted", "measured", "error_percent", "bound", "violated")
 
@@ -163,10 +182,45 @@ def _below_root(path: str, root_name: str) -> str:
     return rest if dot and own else path
 
 
-def _process_of(root: Any, thread_path: str) -> str | None:
+def load_at_speed(
+    load: Fraction, cet_us: Fraction, twin_us: Fraction, profiled: float, run: float
+) -> Fraction:
+    """A thread's CPU load ``load`` (CET / Period, %) at the CPU speed ``run`` of a profile
+    measured at the speed ``profiled`` (the workload twin's gauges, iterations per CPU ms):
+
+        load' = load × (E + (C − E) × s_p / s_r) / C
+
+    with C the CET and E (≤ C) what of it the twin burned: CPU time it burns whatever the speed,
+    while the rest (executor, serialization, DDS, the callback's own Python) takes longer on a
+    slower CPU, in proportion as the twin's loop does."""
+    if cet_us <= 0 or profiled <= 0 or run <= 0:
+        return load
+    fixed = min(max(twin_us, Fraction(0)), cet_us)
+    ratio = Fraction(profiled) / Fraction(run)
+    return load * (fixed + (cet_us - fixed) * ratio) / cet_us
+
+
+def _twin_profile(thread: Any) -> tuple[Fraction, float] | None:
+    """(twin execution time in µs, twin speed) a thread's profile carries, else None."""
+    burned, speed = property_value(thread, _TWIN_EXECUTION_TIME), property_value(thread, _TWIN_SPEED)
+    speed = getattr(speed, "value", speed)
+    if burned is None or not isinstance(speed, (int, float)) or speed <= 0:
+        return None
     try:
-        found = find_instance(root, thread_path)
+        return Fraction(burned.to("us", standard_units())), float(speed)
+    except (RosaadlError, AttributeError, TypeError, ValueError):
+        return None
+
+
+def _instance(root: Any, path: str) -> Any:
+    try:
+        return find_instance(root, path)
     except RosaadlError:
+        return None
+
+
+def _process_of(found: Any) -> str | None:
+    if found is None:
         return None
     current = found.eContainer()
     while current is not None and hasattr(current, "category"):
@@ -191,6 +245,9 @@ class _Comparison:
         self.chains = {_below_root(c.name, self.name): c for c in measurements.chains}
         self.used: set[tuple[str, str]] = set()
         self.placement: dict[str, str] = {}
+        #: per process: its predicted load at the run's twin speed, and its profiles' speeds
+        self.at_speed: dict[str, Fraction] = {}
+        self.profiled_speeds: dict[str, set[float]] = {}
 
     def thread(self, path: str) -> Any:
         key = _below_root(path, self.name)
@@ -232,9 +289,11 @@ class _Comparison:
                 if row.path in seen_threads:
                     continue
                 seen_threads.add(row.path)
-                process = thread_process.setdefault(row.path, _process_of(self.root, row.path))
+                instance = _instance(self.root, row.path)
+                process = thread_process.setdefault(row.path, _process_of(instance))
                 if process is not None and row.load_percent is not None:
                     per_process[process] = per_process.get(process, Fraction(0)) + row.load_percent
+                    self.at_run_speed(process, row, instance)
                 measured = self.thread(row.path)
                 if measured is None:
                     continue
@@ -246,6 +305,39 @@ class _Comparison:
             if processor.cores or (processor.mode and processor is not _first_mode(result, processor)):
                 continue
             self.core(processor, thread_process, measured_process_load)
+
+    def at_run_speed(self, process: str, row: Any, instance: Any) -> None:
+        """Add ``row``'s load to its process's load at the run's speed (:func:`load_at_speed`
+        where the thread's profile carries the twin's values and the run measured its gauge)."""
+        measured = self.processes.get(_below_root(process, self.name))
+        run = getattr(measured, "twin_speed", None)
+        twin = _twin_profile(instance) if run and instance is not None else None
+        load = row.load_percent
+        if twin is not None and row.cet_us:
+            load = load_at_speed(load, row.cet_us, twin[0], twin[1], run)
+            self.profiled_speeds.setdefault(process, set()).add(twin[1])
+        self.at_speed[process] = self.at_speed.get(process, Fraction(0)) + load
+
+    def speed_item(self, path: str, measured: Any) -> None:
+        """The process's load at the run's speed beside its measured load, and a warning when
+        the run's CPU ran at another speed than its profile's."""
+        speeds = self.profiled_speeds.get(path)
+        if not speeds:
+            return
+        self.add(path, "cpu_load_at_run_speed_percent", self.at_speed[path], measured.cpu_load_percent)
+        run = measured.twin_speed
+        off = sorted(s for s in speeds if abs(s / run - 1) > SPEED_TOLERANCE)
+        if off:
+            self.diagnostics.append(
+                Diagnostic(
+                    "warning",
+                    f"the run's CPU ran at {run / off[0]:.2f}× the speed of the process's profile "
+                    f"(workload twin {fmt(run)} against {fmt(off[0])} loops per CPU ms): its executor, "
+                    "serialization and DDS took longer or shorter; cpu_load_at_run_speed_percent "
+                    "rescales them",
+                    Location(path=path),
+                )
+            )
 
     def process_loads(
         self, predicted: dict[str, Fraction], thread_process: dict[str, str | None]
@@ -266,6 +358,7 @@ class _Comparison:
             ]
             totals[path] = measured.cpu_load_percent
             self.add(path, "cpu_load_percent", predicted[path], measured.cpu_load_percent)
+            self.speed_item(path, measured)
             if own:
                 callbacks = sum(own)
                 self.add(path, "callback_cpu_load_percent", predicted[path], callbacks)

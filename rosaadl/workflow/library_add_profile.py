@@ -41,6 +41,8 @@ from rosaadl.workflow.library_nodes import bytes_of, instance_value, ns_of, us_t
 from rosaadl.workflow.library_profiles import (
     DISPATCH_LATENCY,
     PROFILE_SUFFIX,
+    TWIN_EXECUTION_TIME,
+    TWIN_SPEED,
     ExpectedValues,
     ProfileBuilder,
     ProfiledImplementation,
@@ -75,13 +77,16 @@ def _header_comment(unit: EObject, source_name: str, merged: bool) -> str:
     source = f"{source_name} and earlier measurements" if merged else source_name
     if not source_name.lower().endswith(".json"):
         carried = "-- Compute_Execution_Time, the process its SEI::MIPSBudget (= Raw_MIPS / IPC).\n\n"
-    elif _has_dispatch_latency(unit):
-        carried = (
-            "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget),\n"
-            "-- a timer thread its measured ROS_Properties::Dispatch_Latency.\n\n"
-        )
     else:
-        carried = "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget).\n\n"
+        carried = "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget)"
+        if _carries(unit, DISPATCH_LATENCY):
+            carried += ",\n-- a timer thread its measured ROS_Properties::Dispatch_Latency"
+        if _carries(unit, TWIN_SPEED):
+            carried += (
+                ",\n-- an emulated thread the CPU time its workload twin burned and the twin's\n"
+                "-- speed gauge (ROS_Properties::Twin_Execution_Time, Twin_Speed)"
+            )
+        carried += ".\n\n"
     return (
         f"-- {unit.name}: platform-dependent implementations (PDM) of the nodes\n"
         f"-- of {nodes}, made by `rosaadl library add-profile` from {source}.\n"
@@ -89,10 +94,10 @@ def _header_comment(unit: EObject, source_name: str, merged: bool) -> str:
     )
 
 
-def _has_dispatch_latency(unit: EObject) -> bool:
-    """Whether a classifier of ``unit`` carries a measured dispatch latency."""
+def _carries(unit: EObject, prop: str) -> bool:
+    """Whether a classifier of ``unit`` carries the property ``prop``."""
     return any(
-        (pa.property or "").lower() == DISPATCH_LATENCY.lower()
+        (pa.property or "").lower() == prop.lower()
         for classifier in unit.classifiers
         for pa in classifier.ownedPropertyAssociations
     )
@@ -299,6 +304,16 @@ def _check_values(
                     "dispatch_latency_us",
                     f"thread {item.thread} of {impl.process} does not carry {DISPATCH_LATENCY} => "
                     f"{us_text(m.dispatch_latency_ns)} (it has {latency}){overridden}",
+                )
+            )
+        burned, speed = instance_value(thread, TWIN_EXECUTION_TIME), instance_value(thread, TWIN_SPEED)
+        if m.twin_speed is not None and (ns_of(burned) != m.twin_execution_time_ns or speed != m.twin_speed):
+            errors.append(
+                m.error(
+                    "twin",
+                    f"thread {item.thread} of {impl.process} does not carry {TWIN_EXECUTION_TIME} => "
+                    f"{us_text(m.twin_execution_time_ns)} and {TWIN_SPEED} => {m.twin_speed:g} "
+                    f"(it has {burned} and {speed}){overridden}",
                 )
             )
         if item.port is not None and m.data_size is not None:

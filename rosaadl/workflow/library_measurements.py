@@ -101,6 +101,10 @@ class Measurement:
     #: the executor's measured dispatch latency, whole µs in ns (a measured run's
     #: ``dispatch_latency_us`` max, rounded up); None: not measured (no CSV column gives it)
     dispatch_latency_ns: int | None = None
+    #: the workload twin's CPU time per dispatch (ns) and its process's speed gauge when the
+    #: run was measured (a measured run's ``twin`` and ``twin_speed``); None: no twin ran
+    twin_execution_time_ns: int | None = None
+    twin_speed: float | None = None
 
     @property
     def pdm(self) -> str:

@@ -25,6 +25,10 @@ per measured thread with a dispatch:
 * ``ROS_Properties::Dispatch_Latency``: the max of the thread's ``dispatch_latency_us`` (a
   timer thread's latency from its release to its start while its executor was idle, version 3),
   rounded up to a whole µs, when measured;
+* ``ROS_Properties::Twin_Execution_Time`` and ``ROS_Properties::Twin_Speed``: what of the
+  execution time the workload twin burned (CPU time that does not depend on the CPU's speed)
+  and its process's speed gauge (version 4), where the twin ran: ``analyze --compare`` rescales
+  the rest of the execution time to the speed a later run measures;
 * no ``Raw_MIPS``, ``IPC`` or ``MIPSBudget``: a run without hardware counters measures no
   instruction rate, and the library leaves out what was not measured.
 
@@ -67,6 +71,15 @@ def middleware_per_dispatch(measurements: Measurements) -> dict[str, float]:
         if beyond > 0 and rates.get(process.path):
             cost[process.path] = beyond / 100 * 1e6 / rates[process.path]  # µs of CPU per dispatch
     return {t.path: cost.get(t.process or t.path.rpartition(".")[0], 0.0) for t in measurements.threads}
+
+
+def _twin(thread, speed: float | None) -> dict[str, object]:
+    """The workload twin's values of a profile row: its CPU time per dispatch (ns) and
+    its process's speed gauge, both or neither."""
+    burned = thread.twin_execution_time_us
+    if burned is None or speed is None:
+        return {}
+    return {"twin_execution_time_ns": round(burned * 1000), "twin_speed": speed}
 
 
 def run_measurement_rows(
@@ -118,6 +131,7 @@ def run_measurement_rows(
         for p in measurements.processes
     }
     middleware = middleware_per_dispatch(measurements)
+    speeds = {p.path: p.twin_speed for p in measurements.processes}
     sizes: dict[str, list[int | None]] = {}
     for topic in measurements.topics:
         if topic.port:
@@ -163,6 +177,7 @@ def run_measurement_rows(
                 data_size=published[0] if len(published) == 1 else None,
                 processor=None,
                 dispatch_latency_ns=None if latency is None else math.ceil(latency.max) * 1000,
+                **_twin(thread, speeds.get(process)),
             )
         )
     return ([] if errors else rows), errors, notes

@@ -240,3 +240,16 @@ def test_executor_bounds_of_callbacks_without_execution_times_are_not_held_to_th
     assert [d.location.path for d in report.diagnostics if "not held to the run" in d.message] == [
         f"{process}.Client.client_timer"
     ]
+
+
+def test_a_load_at_another_speed_rescales_what_the_twin_did_not_burn() -> None:
+    from fractions import Fraction
+
+    from rosaadl.analysis.compare import load_at_speed
+
+    # 60 of 100 us burned; the other 40 take 300 / 250 as long on the slower CPU
+    assert load_at_speed(Fraction(10), Fraction(100), Fraction(60), 300.0, 250.0) == Fraction(108, 10)
+    assert load_at_speed(Fraction(10), Fraction(100), Fraction(60), 300.0, 300.0) == 10
+    assert load_at_speed(Fraction(10), Fraction(100), Fraction(150), 300.0, 150.0) == 10  # all burned
+    assert load_at_speed(Fraction(10), Fraction(100), Fraction(0), 300.0, 150.0) == 20  # none burned
+    assert load_at_speed(Fraction(10), Fraction(0), Fraction(0), 300.0, 150.0) == 10

@@ -134,6 +134,73 @@ def test_the_profiled_dispatch_latency_reaches_the_analysed_system(tmp_path, cap
     assert callback["kind"] == "timer" and callback["wcrt"] == pytest.approx(2700.54 + 1843)
 
 
+def _twin_run(tmp_path):
+    """The sample run as version 4: usb_cam's thread burned 2210.5 us per dispatch in its
+    workload twin, whose gauge ran 331.2 loops per CPU ms in that process; pos_to_cmd no twin."""
+    document = tracking_measurements()
+    document["version"] = 4
+    document["run"].update(board="xu4", core="a15")
+    document["threads"][0]["twin"] = {"execution_time_us": 2210.5, "speed": 330.0}
+    document["processes"][0]["twin_speed"] = 331.2
+    return write_tracking_measurements(tmp_path, document)
+
+
+def test_the_workload_twin_s_burned_time_and_speed_go_into_the_thread_pdm(tmp_path) -> None:
+    out = tmp_path / "profiles"
+    add_profiles(_twin_run(tmp_path), out)
+    usb = (out / "nd_usb_cam_profiles.aadl").read_text()
+    assert "  with nd_usb_cam, ROS_Properties, Exynos_5422;" in usb
+    assert (
+        "      Compute_Execution_Time => 2700540 ns .. 2700540 ns;\n"
+        "      ROS_Properties::Twin_Execution_Time => 2210500 ns;\n"
+        "      ROS_Properties::Twin_Speed => 331.2;\n"  # the process's gauge, not the thread's
+    ) in usb
+    assert "-- speed gauge (ROS_Properties::Twin_Execution_Time, Twin_Speed)." in usb
+    pos = (out / "nd_pos_to_cmd_profiles.aadl").read_text()
+    assert "Twin_" not in pos and "ROS_Properties" not in pos
+    instance = instantiate(read_library([out]), "nd_usb_cam_profiles::usb_cam_nd.xu4_a15")
+    thread = find_instance(instance, "image_broadcaster")
+    assert property_value(thread, "ROS_Properties::Twin_Execution_Time").to("us") == 2210.5
+    assert property_value(thread, "ROS_Properties::Twin_Speed") == 331.2
+
+
+def test_compare_rescales_a_profiled_process_to_the_speed_its_run_measured(tmp_path, capsys) -> None:
+    out = tmp_path / "profiles"
+    add_profiles(_twin_run(tmp_path), out)
+    system = tmp_path / "tracking_profiled.aadl"
+    system.write_text(tracking_profiled({"usbcam": "nd_usb_cam_profiles::usb_cam_nd.xu4_a15"}))
+    document = tracking_measurements()
+    document["version"] = 4
+    document["processes"][0]["twin_speed"] = 298.08  # the CPU at 0.9 x the profile's speed
+    document["processes"][1]["twin_speed"] = 400.0  # pos_to_cmd: its profile has no twin
+    (tmp_path / "slow").mkdir()
+    slow = write_tracking_measurements(tmp_path / "slow", document)
+    args = [str(SYSTEMS), str(out), str(system), "--root", "tracking_profiled::tracking_profiled.impl"]
+    code = main(["--format", "json", "analyze", *args, "--compare", str(slow), "--only", "cpu,compare"])
+    report = json.loads(capsys.readouterr().out)
+    # the sample's made-up response times and latency pass their bounds: the only errors
+    assert code == 1 and all(e["message"].startswith("measured ") for e in report["errors"])
+    items = {(i["path"].partition(".")[2], i["quantity"]): i for i in report["analyses"]["compare"]["items"]}
+    plain = items[("rem_trk_sw.usbcam", "cpu_load_percent")]["predicted"]
+    rescaled = items[("rem_trk_sw.usbcam", "cpu_load_at_run_speed_percent")]
+    # 2210.5 us of the CET of 2700.54 us burned by the twin; the rest takes 1 / 0.9 as long
+    assert rescaled["predicted"] == pytest.approx(plain * (2210.5 + (2700.54 - 2210.5) / 0.9) / 2700.54)
+    assert rescaled["measured"] == 8.1
+    assert ("rem_trk_sw.poscmd", "cpu_load_at_run_speed_percent") not in items
+    warning = next(w for w in report["warnings"] if "speed" in w["message"])
+    assert "0.90× the speed of the process's profile" in warning["message"]
+    assert warning["path"].endswith("rem_trk_sw.usbcam")
+    # a run at the profile's speed: the same prediction, no warning
+    document["processes"][0]["twin_speed"] = 331.2
+    (tmp_path / "same").mkdir()
+    same = write_tracking_measurements(tmp_path / "same", document)
+    main(["--format", "json", "analyze", *args, "--compare", str(same), "--only", "cpu,compare"])
+    report = json.loads(capsys.readouterr().out)
+    items = {(i["path"].partition(".")[2], i["quantity"]): i for i in report["analyses"]["compare"]["items"]}
+    assert items[("rem_trk_sw.usbcam", "cpu_load_at_run_speed_percent")]["predicted"] == pytest.approx(plain)
+    assert not any("speed" in w["message"] for w in report["warnings"])
+
+
 def test_an_out_of_range_dispatch_latency_is_refused_at_its_path(tmp_path) -> None:
     huge = {"min": 1.0, "mean": 2.0, "max": 1e300}
     target = _run_file(tmp_path, 3, (huge,), board="xu4", core="a15")
