@@ -55,9 +55,9 @@ def _write(folder, name, lines):
 
 @pytest.fixture
 def traces(tmp_path):
-    """cam publishes /image every 10 ms; trk handles each image (2 ms CPU, 1.5 ms of it burned
-    by the workload twin in 600 loops) and publishes /point from a 20 ms timer; cmd receives
-    /point. Times in ns from 1 s."""
+    """cam publishes /image every 10 ms; trk handles each image (2 ms CPU; its workload twin
+    ran 600 loops in 1.5 ms, 1.8 ms into the dispatch, or, every other image, no loop 1 ms into
+    it) and publishes /point from a 20 ms timer; cmd receives /point. Times in ns from 1 s."""
     t0 = 1000 * MS
     cam = ["N /cam", "T pub camera_thread", "O /image camera_thread.out"]
     trk = ["N /trk", "T work tracker", "T send sender", "O /point sender.out"]
@@ -68,7 +68,8 @@ def traces(tmp_path):
         cam.append(f"P /image {k + 1} {release + MS} {release}")
         trk.append(f"R /image {k + 1} {release + MS} {release + 2 * MS}")
         trk.append(
-            f"D work {release + 2 * MS} {release + 2 * MS} {release + 4 * MS} {2 * MS} 600 {3 * MS // 2}"
+            f"D work {release + 2 * MS} {release + 2 * MS} {release + 4 * MS} {2 * MS} "
+            + (f"600 {3 * MS // 2} {9 * MS // 5}" if k % 2 else f"0 0 {MS}")
         )
     for j in range(5):
         release = t0 + j * 20 * MS + 5 * MS
@@ -77,6 +78,7 @@ def traces(tmp_path):
         cmd.append(f"R /point {j + 1} {release + MS} {release + 3 * MS}")
     cmd.append("D recv 5 6")  # a line cut short by a killed node
     cmd.append(f"D recv {t0} {t0} {t0 + MS} {MS} 600")  # the twin's gauge cut short
+    cmd.append(f"D recv {t0} {t0} {t0 + MS} {MS} 600 {MS}")
     _write(tmp_path, "cam", cam)
     _write(tmp_path, "trk", trk)
     _write(tmp_path, "cmd", cmd)
@@ -96,7 +98,7 @@ TOPICS = [
 
 def test_a_trace_is_read_and_a_cut_line_counted(traces) -> None:
     trace = read_trace(traces / "cmd.1.trace")
-    assert trace.node == "/cmd" and trace.bad_lines == 2
+    assert trace.node == "/cmd" and trace.bad_lines == 3
     assert len(trace.received["/point"]) == 5
 
 
@@ -150,9 +152,10 @@ def test_the_document_validates_and_holds_threads_processes_topics_chains(traces
     assert read.topics[0].bandwidth_bytes_per_s == 6400.0
     assert read.chains[0].samples == 5 and read.chains[0].latency_us.mean == 7000.0
     assert document["version"] == 4
-    # the workload twin of trk's work thread: 1.5 ms burned per dispatch, 600 loops per 1.5 ms
+    # the workload twin of trk's work thread: 1.8 and 1 ms into its dispatches (1.4 on the mean,
+    # the dispatches without a loop counted), 600 loops per 1.5 ms where it looped
     work = next(t for t in read.threads if t.path == "top_Instance.sw.trk.tracker")
-    assert (work.twin_execution_time_us, work.twin_speed) == (1500.0, 400.0)
+    assert (work.twin_execution_time_us, work.twin_speed) == (1400.0, 400.0)
     assert camera.twin_speed is None and "twin" not in document["threads"][0]
     assert [p.twin_speed for p in read.processes] == [None, 400.0]
     # a plan that does not say which threads run on a timer: no dispatch latency is claimed

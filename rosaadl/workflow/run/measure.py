@@ -5,7 +5,7 @@ With the node parameter ``rosaadl.trace`` true, each generated node writes
 ``<run folder>/trace/<node>.<pid>.trace`` (the ``Tracer`` of the generated code): a header
 (``N`` its name, ``T ident thread`` its threads, ``O topic port`` its out ports) then one line
 per event, times from the system-wide ``CLOCK_MONOTONIC``:
-``D thread release start end cpu [loops burned]``, ``P topic seq published dispatch_start``,
+``D thread release start end cpu [loops looped fixed]``, ``P topic seq published dispatch_start``,
 ``R topic seq published received``. Only events inside the measured window (from the moment
 every node is up to the stop) count.
 
@@ -14,7 +14,8 @@ every node is up to the stop) count.
   deadline misses (the node's ``<thread>.deadline`` parameter); for a thread on a periodic
   timer, its dispatch latency (:func:`idle_dispatch_latencies`: release to start of the
   dispatches released while its executor was idle); where the workload twin ran, its ``twin``:
-  the mean CPU time it burned per dispatch and its gauge's speed (:func:`twin_speed`);
+  the mean CPU time per dispatch up to the end of the twin's loop (``fixed``: what the twin holds
+  to the CET whatever the CPU's speed) and the loop's speed gauge (:func:`twin_speed`);
 * per process: CPU load, the CPU time of its threads over the window (the scheduler's count of
   each thread, ``/proc/PID/task/TID/schedstat``, in ns; ``/proc/PID/stat``'s user + system
   time, in 10 ms ticks, where the kernel keeps no such count) and the core it was bound to
@@ -86,8 +87,9 @@ class NodeTrace:
     #: or end lies outside): they kept the executor busy at the window's edges
     edges: list[tuple[int, int]] = field(default_factory=list)
     published: dict[tuple[str, int], int] = field(default_factory=dict)  # (topic, seq) -> dispatch start
-    #: thread ident -> (dispatches, gauge loops, CPU ns burned) of the workload twin in the window
-    twin: dict[str, tuple[int, int, int]] = field(default_factory=dict)
+    #: thread ident -> (dispatches, loops, their CPU ns, CPU ns up to the loop's end) of the
+    #: workload twin in the window
+    twin: dict[str, tuple[int, int, int, int]] = field(default_factory=dict)
     received: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)  # topic -> (recv, seq, pub)
     bad_lines: int = 0
 
@@ -116,13 +118,16 @@ def read_trace(path: Path, window: tuple[int, int] | None = None) -> NodeTrace:
                 trace.threads[parts[1]] = parts[2]
             elif kind == "O" and len(parts) == 3:
                 trace.ports[parts[1]] = parts[2]
-            elif kind == "D" and len(parts) in (6, 8):
-                release, start, end, cpu, *burned = (int(p) for p in parts[2:])
+            elif kind == "D" and len(parts) in (6, 9):
+                release, start, end, cpu, *twin = (int(p) for p in parts[2:])
                 if low <= release and end <= high:
                     trace.dispatches.setdefault(parts[1], []).append((release, start, end, cpu))
-                    if burned:
-                        count, loops, ns = trace.twin.get(parts[1], (0, 0, 0))
-                        trace.twin[parts[1]] = (count + 1, loops + burned[0], ns + burned[1])
+                    if twin:
+                        held = trace.twin.get(parts[1], (0, 0, 0, 0))
+                        trace.twin[parts[1]] = (
+                            held[0] + 1,
+                            *(a + b for a, b in zip(held[1:], twin, strict=True)),
+                        )
                 elif end >= low and start <= high:
                     trace.edges.append((start, end))
             elif kind == "P" and len(parts) == 5:
@@ -243,11 +248,11 @@ def _thread_row(
     events: list,
     deadline_s: float | None,
     spans: list[tuple[int, int]] | None = None,
-    twin: tuple[int, int, int] | None = None,
+    twin: tuple[int, int, int, int] | None = None,
 ) -> dict[str, Any]:
     """One thread's row; ``spans``: ``(start, end)`` of every dispatch of its process when the
     thread runs on a periodic timer (its dispatch latency is measured), else None; ``twin``: the
-    workload twin's (dispatches, loops, CPU ns) where it ran."""
+    workload twin's (dispatches, loops, their CPU ns, CPU ns up to the loop's end) where it ran."""
     events = sorted(events)
     releases = [e[0] for e in events]
     gaps = [(b - a) / 1000 for a, b in itertools.pairwise(releases)]
@@ -270,7 +275,7 @@ def _thread_row(
         row["dispatch_latency_us"] = _stats(idle_dispatch_latencies(events, spans))
     if twin is not None and twin_speed(twin[1], twin[2]) is not None:
         row["twin"] = {
-            "execution_time_us": round(twin[2] / twin[0] / 1000, 3),
+            "execution_time_us": round(twin[3] / twin[0] / 1000, 3),
             "speed": twin_speed(twin[1], twin[2]),
         }
     return row
