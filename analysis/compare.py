@@ -190,9 +190,10 @@ def load_at_speed(
 
         load' = load × (E + (C − E) × s_p / s_r) / C
 
-    with C the CET and E (≤ C) what of it the twin burned: CPU time it burns whatever the speed,
-    while the rest (executor, serialization, DDS, the callback's own Python) takes longer on a
-    slower CPU, in proportion as the twin's loop does."""
+    with C the CET and E (≤ C) what of it the twin held (its dispatch's CPU time up to the end of
+    its loop, the same whatever the speed), while the rest (executor, serialization and
+    publishing, DDS; user code where it replaced the twin, E = 0) takes longer on a slower CPU,
+    in proportion as the twin's loop does."""
     if cet_us <= 0 or profiled <= 0 or run <= 0:
         return load
     fixed = min(max(twin_us, Fraction(0)), cet_us)

@@ -83,7 +83,7 @@ def _header_comment(unit: EObject, source_name: str, merged: bool) -> str:
             carried += ",\n-- a timer thread its measured ROS_Properties::Dispatch_Latency"
         if _carries(unit, TWIN_SPEED):
             carried += (
-                ",\n-- an emulated thread the CPU time its workload twin burned and the twin's\n"
+                ",\n-- an emulated thread the CPU time its workload twin held and the CPU's\n"
                 "-- speed gauge (ROS_Properties::Twin_Execution_Time, Twin_Speed)"
             )
         carried += ".\n\n"
@@ -312,7 +312,7 @@ def _check_values(
                 m.error(
                     "twin",
                     f"thread {item.thread} of {impl.process} does not carry {TWIN_EXECUTION_TIME} => "
-                    f"{us_text(m.twin_execution_time_ns)} and {TWIN_SPEED} => {m.twin_speed:g} "
+                    f"{us_text(m.twin_execution_time_ns)} and {TWIN_SPEED} => {m.twin_speed!r} "
                     f"(it has {burned} and {speed}){overridden}",
                 )
             )

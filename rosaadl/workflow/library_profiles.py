@@ -19,8 +19,9 @@
     end imagePublisher.le376_atom;
 
 A measured run (``measurements.json``) gives a timer thread's PDM its measured executor latency
-too, ``ROS_Properties::Dispatch_Latency => 1843 us;`` (:data:`DISPATCH_LATENCY`), and an
-emulated thread what its workload twin burned and the twin's speed gauge,
+too, ``ROS_Properties::Dispatch_Latency => 1843 us;`` (:data:`DISPATCH_LATENCY`), and the
+threads of a process whose run gauged the CPU's speed what of their CET the workload twin held
+and the process's gauge,
 ``ROS_Properties::Twin_Execution_Time => 3750 us; ROS_Properties::Twin_Speed => 331.2;``
 (:data:`TWIN_EXECUTION_TIME`, :data:`TWIN_SPEED`).
 

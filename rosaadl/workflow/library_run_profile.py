@@ -25,10 +25,11 @@ per measured thread with a dispatch:
 * ``ROS_Properties::Dispatch_Latency``: the max of the thread's ``dispatch_latency_us`` (a
   timer thread's latency from its release to its start while its executor was idle, version 3),
   rounded up to a whole µs, when measured;
-* ``ROS_Properties::Twin_Execution_Time`` and ``ROS_Properties::Twin_Speed``: what of the
-  execution time the workload twin burned (CPU time that does not depend on the CPU's speed)
-  and its process's speed gauge (version 4), where the twin ran: ``analyze --compare`` rescales
-  the rest of the execution time to the speed a later run measures;
+* ``ROS_Properties::Twin_Execution_Time`` and ``ROS_Properties::Twin_Speed``, for every thread
+  of a process whose run measured the workload twin's speed gauge (version 4): what of the
+  execution time the twin held whatever the CPU's speed (its ``twin.execution_time_us``; 0 for
+  a thread the twin did not run in) and the process's gauge: ``analyze --compare`` rescales the
+  rest of the execution time to the speed a later run measures;
 * no ``Raw_MIPS``, ``IPC`` or ``MIPSBudget``: a run without hardware counters measures no
   instruction rate, and the library leaves out what was not measured.
 
@@ -48,8 +49,9 @@ from rosaadl.workflow.library_measurements import Measurement, MeasurementError
 __all__ = ["run_measurement_rows", "middleware_per_dispatch"]
 
 _PART = re.compile(r"[A-Za-z0-9](?:_?[A-Za-z0-9])*\Z")
-#: a dispatch latency above this (µs, about 31 years) is refused: the model's times are 64-bit ns
-_MAX_LATENCY_US = 10**15
+#: a dispatch latency or twin time above this (µs, about 31 years) is refused: the model's times
+#: are 64-bit ns
+_MAX_TIME_US = 10**15
 
 
 def middleware_per_dispatch(measurements: Measurements) -> dict[str, float]:
@@ -74,12 +76,12 @@ def middleware_per_dispatch(measurements: Measurements) -> dict[str, float]:
 
 
 def _twin(thread, speed: float | None) -> dict[str, object]:
-    """The workload twin's values of a profile row: its CPU time per dispatch (ns) and
-    its process's speed gauge, both or neither."""
-    burned = thread.twin_execution_time_us
-    if burned is None or speed is None:
+    """The workload twin's values of a profile row where its process measured the twin's
+    speed: the thread's speed-independent CPU time per dispatch (ns; 0 without a twin) and the
+    process's gauge."""
+    if speed is None:
         return {}
-    return {"twin_execution_time_ns": round(burned * 1000), "twin_speed": speed}
+    return {"twin_execution_time_ns": round((thread.twin_execution_time_us or 0) * 1000), "twin_speed": speed}
 
 
 def run_measurement_rows(
@@ -149,16 +151,35 @@ def run_measurement_rows(
             )
             continue
         latency = thread.dispatch_latency_us
-        if latency is not None and latency.max > _MAX_LATENCY_US:
+        if latency is not None and latency.max > _MAX_TIME_US:
             at = f"{where}.dispatch_latency_us.max"
             errors.append(
                 MeasurementError(
-                    f"{at[2:]}: {latency.max:g} us is out of range (at most {_MAX_LATENCY_US} us)",
+                    f"{at[2:]}: {latency.max:g} us is out of range (at most {_MAX_TIME_US} us)",
                     Location(file=file, line=lines.get(at, lines.get(where, 1)), path=at),
                 )
             )
             continue
         process = thread.process or thread.path.rpartition(".")[0]
+        burned = thread.twin_execution_time_us
+        if burned is not None and burned > _MAX_TIME_US:
+            at = f"{where}.twin.execution_time_us"
+            errors.append(
+                MeasurementError(
+                    f"{at[2:]}: {burned:g} us is out of range (at most {_MAX_TIME_US} us)",
+                    Location(file=file, line=lines.get(at, lines.get(where, 1)), path=at),
+                )
+            )
+            continue
+        if burned is not None and speeds.get(process) is None:
+            notes.append(
+                Diagnostic(
+                    "warning",
+                    f"{where}: thread {thread.path} ran the workload twin, but its process has no "
+                    "twin_speed; its profile keeps no speed",
+                    Location(file=file, line=lines.get(where), path=where),
+                )
+            )
         inside = thread.path[len(process) + 1 :] if thread.path.startswith(f"{process}.") else None
         published = sizes.get(thread.path, [])
         rows.append(

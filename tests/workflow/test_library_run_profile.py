@@ -295,7 +295,9 @@ end rosmod_shaped;
 """
 
 
-def _rosmod_shaped_run(tmp_path) -> Path:
+def _rosmod_shaped_run(tmp_path, twin: bool = False) -> Path:
+    """A run of the ROSMOD-shaped model; ``twin``: version 4, ping_timer ran the workload twin
+    (echo_timer did not) and the process measured its gauge."""
     model = tmp_path / "model"
     model.mkdir()
     (model / "rosmod_shaped.aadl").write_text(ROSMOD_SHAPED)
@@ -324,6 +326,10 @@ def _rosmod_shaped_run(tmp_path) -> Path:
         "topics": [],
         "chains": [],
     }
+    if twin:
+        document["version"] = 4
+        threads[0]["twin"] = {"execution_time_us": 950.25, "speed": 301.0}
+        document["processes"][0]["twin_speed"] = 300.5
     write_tracking_measurements(tmp_path, document)
     return model
 
@@ -346,6 +352,48 @@ def test_threads_in_a_thread_group_get_their_values_on_the_process_pdm_at_their_
         thread = find_instance(instance, f"Pinger.{name}")
         cet = property_value(thread, "Compute_Execution_Time")
         assert cet.minimum.to("us") == cet.maximum.to("us") == cet_us
+
+
+def test_a_thread_group_s_threads_get_the_twin_s_values_at_their_path(tmp_path) -> None:
+    """Every thread of a process that gauged the CPU keeps the speed; one the twin did not run
+    in keeps no speed-independent time (0): all its CPU time follows the speed."""
+    model = _rosmod_shaped_run(tmp_path, twin=True)
+    out = tmp_path / "profiles"
+    add_profiles(tmp_path / "measurements.json", out, inputs=[model])
+    text = (out / "rosmod_shaped_profiles.aadl").read_text()
+    assert "ROS_Properties::Twin_Execution_Time => 950250 ns applies to Pinger.ping_timer;" in text
+    assert "ROS_Properties::Twin_Speed => 300.5 applies to Pinger.ping_timer;" in text
+    assert "ROS_Properties::Twin_Execution_Time => 0 us applies to Pinger.echo_timer;" in text
+    assert "ROS_Properties::Twin_Speed => 300.5 applies to Pinger.echo_timer;" in text
+    instance = instantiate(read_library([model, out]), "rosmod_shaped_profiles::Ping_Node.bbb_a8")
+    thread = find_instance(instance, "Pinger.ping_timer")
+    assert property_value(thread, "ROS_Properties::Twin_Execution_Time").to("ns") == 950250
+    assert property_value(thread, "ROS_Properties::Twin_Speed") == 300.5
+
+
+def test_a_twin_without_its_process_s_gauge_keeps_no_speed_and_says_so(tmp_path) -> None:
+    document = tracking_measurements()
+    document["version"] = 4
+    document["run"].update(board="xu4", core="a15")
+    document["threads"][1]["twin"] = {"execution_time_us": 900.0, "speed": 330.0}
+    out = tmp_path / "profiles"
+    result = add_profiles(write_tracking_measurements(tmp_path, document), out)
+    assert "Twin_" not in (out / "nd_pos_to_cmd_profiles.aadl").read_text()
+    [warning] = [w for w in result.warnings if "twin" in w.message]
+    assert "rem_trk_sw.poscmd.cmd_publisher ran the workload twin" in warning.message
+    assert warning.location.path == "$.threads[1]" and warning.location.line
+
+
+def test_an_out_of_range_twin_time_is_refused_at_its_path(tmp_path) -> None:
+    document = tracking_measurements()
+    document["version"] = 4
+    document["run"].update(board="xu4", core="a15")
+    document["threads"][0]["twin"] = {"execution_time_us": 1e300, "speed": 330.0}
+    document["processes"][0]["twin_speed"] = 330.0
+    with pytest.raises(RosaadlError) as caught:
+        add_profiles(write_tracking_measurements(tmp_path, document), tmp_path / "profiles")
+    assert any(e.location.path == "$.threads[0].twin.execution_time_us" for e in caught.value.errors)
+    assert not (tmp_path / "profiles").exists()
 
 
 def test_a_thread_in_a_thread_group_is_named_by_its_path_or_its_own_name(tmp_path) -> None:
