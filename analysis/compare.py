@@ -12,11 +12,12 @@ measured (``measurements.json``, :mod:`rosaadl.importers.measurements`), with th
   ``/proc``), ``callback_cpu_load_percent`` (the same prediction vs its measured threads' own
   CPU time) and ``middleware_cpu_load_percent`` (what the model does not hold: the process's
   CPU time beyond its callbacks, spent in the executor, serialization and DDS; no prediction);
-  where its threads' profiles carry the workload twin's values (``ROS_Properties::
-  Twin_Execution_Time`` and ``Twin_Speed``, a profile of an emulated run) and the run measured
-  the twin's speed gauge, ``cpu_load_at_run_speed_percent`` too: :func:`load_at_speed`, the
-  prediction with what is not the twin's burned time rescaled to the run's CPU speed (a
-  warning says when the two speeds differ by more than :data:`SPEED_TOLERANCE`);
+  where its threads' profiles carry the speed of the CPUs they were measured on
+  (``ROS_Properties::Profiled_CPU_Speed``, with ``Twin_Execution_Time``: a profile of a measured
+  run) and the run gauged its CPUs too (``cpu_speed``), ``cpu_load_at_run_speed_percent``:
+  :func:`load_at_speed`, the prediction with what the workload twin did not hold rescaled to the
+  run's CPU speed (a warning says when the two speeds differ by more than
+  :data:`SPEED_TOLERANCE`);
 * per processor or core: ``cpu_load_percent`` (its threads' utilisation vs the measured load of
   what is bound to it);
 * per out port with a measured topic: ``bandwidth_kbps`` (``Data_Size`` × rate, KB/s);
@@ -64,11 +65,11 @@ __all__ = [
     "compare_csv",
 ]
 
-#: Profile and run whose twin speed gauges differ by more than this part ran at different CPU
+#: Profile and run whose CPU speed gauges differ by more than this part ran at different CPU
 #: speeds (a warning says so).
 SPEED_TOLERANCE = 0.05
 _TWIN_EXECUTION_TIME = "ROS_Properties::Twin_Execution_Time"
-_TWIN_SPEED = "ROS_Properties::Twin_Speed"
+_CPU_SPEED = "ROS_Properties::Profiled_CPU_Speed"
 
 _HEADERS = ("path", "quantity", "predicted", "measured", "error_percent", "bound", "violated")
 
@@ -186,14 +187,14 @@ def load_at_speed(
     load: Fraction, cet_us: Fraction, twin_us: Fraction, profiled: float, run: float
 ) -> Fraction:
     """A thread's CPU load ``load`` (CET / Period, %) at the CPU speed ``run`` of a profile
-    measured at the speed ``profiled`` (the workload twin's gauges, iterations per CPU ms):
+    measured at the speed ``profiled`` (the runs' CPU speed gauges, iterations per CPU ms):
 
         load' = load × (E + (C − E) × s_p / s_r) / C
 
     with C the CET and E (≤ C) what of it the twin held (its dispatch's CPU time up to the end of
     its loop, the same whatever the speed), while the rest (executor, serialization and
     publishing, DDS; user code where it replaced the twin, E = 0) takes longer on a slower CPU,
-    in proportion as the twin's loop does."""
+    in proportion as the gauge's loop does."""
     if cet_us <= 0 or profiled <= 0 or run <= 0:
         return load
     fixed = min(max(twin_us, Fraction(0)), cet_us)
@@ -202,8 +203,8 @@ def load_at_speed(
 
 
 def _twin_profile(thread: Any) -> tuple[Fraction, float] | None:
-    """(twin execution time in µs, twin speed) a thread's profile carries, else None."""
-    burned, speed = property_value(thread, _TWIN_EXECUTION_TIME), property_value(thread, _TWIN_SPEED)
+    """(twin execution time in µs, CPU speed) a thread's profile carries, else None."""
+    burned, speed = property_value(thread, _TWIN_EXECUTION_TIME), property_value(thread, _CPU_SPEED)
     speed = getattr(speed, "value", speed)
     if burned is None or not isinstance(speed, (int, float)) or speed <= 0:
         return None
@@ -246,7 +247,7 @@ class _Comparison:
         self.chains = {_below_root(c.name, self.name): c for c in measurements.chains}
         self.used: set[tuple[str, str]] = set()
         self.placement: dict[str, str] = {}
-        #: per process: its predicted load at the run's twin speed, and its profiles' speeds
+        #: per process: its predicted load at the run's CPU speed, and its profiles' speeds
         self.at_speed: dict[str, Fraction] = {}
         self.profiled_speeds: dict[str, set[float]] = {}
 
@@ -311,7 +312,7 @@ class _Comparison:
         """Add ``row``'s load to its process's load at the run's speed (:func:`load_at_speed`
         where the thread's profile carries the twin's values and the run measured its gauge)."""
         measured = self.processes.get(_below_root(process, self.name))
-        run = getattr(measured, "twin_speed", None)
+        run = getattr(measured, "cpu_speed", None)
         twin = _twin_profile(instance) if run and instance is not None else None
         load = row.load_percent
         if twin is not None and row.cet_us:
@@ -326,16 +327,16 @@ class _Comparison:
         if not speeds:
             return
         self.add(path, "cpu_load_at_run_speed_percent", self.at_speed[path], measured.cpu_load_percent)
-        run = measured.twin_speed
+        run = measured.cpu_speed
         off = sorted(s for s in speeds if abs(s / run - 1) > SPEED_TOLERANCE)
         if off:
             self.diagnostics.append(
                 Diagnostic(
                     "warning",
                     f"the run's CPU ran at {run / off[0]:.2f}× the speed of the process's profile "
-                    f"(workload twin {fmt(run)} against {fmt(off[0])} loops per CPU ms): its executor, "
-                    "serialization and DDS took longer or shorter; cpu_load_at_run_speed_percent "
-                    "rescales them",
+                    f"(gauge {fmt(run)} against {fmt(off[0])} loops per CPU ms): its executor, "
+                    "serialization, DDS and user code took longer or shorter; "
+                    "cpu_load_at_run_speed_percent rescales them",
                     Location(path=path),
                 )
             )

@@ -48,7 +48,7 @@ KNOWN_VERSIONS = (1, 2, 3, 4)
 _NEW_IN: tuple[tuple[int, tuple[tuple[str, str], ...]], ...] = (
     (2, (("run", "period_scale"), ("processes", "profile"))),
     (3, (("threads", "dispatch_latency_us"),)),
-    (4, (("threads", "twin"), ("processes", "twin_speed"))),
+    (4, (("threads", "twin_execution_time_us"), ("processes", "cpu_speed"))),
 )
 #: a measurements file larger than this is refused before it is read
 MAX_FILE_BYTES = 64 * 1024 * 1024
@@ -87,8 +87,8 @@ class ThreadMeasurement:
     own thread), response time (release to end), deadline misses; times in µs.
     ``dispatch_latency_us``: release to start of its timer dispatches released while its
     executor was idle (version 3; None: not a timer thread, or no such dispatch).
-    ``twin_execution_time_us`` and ``twin_speed``: the workload twin's mean CPU time burned per
-    dispatch and its speed gauge (iterations per ms of CPU; version 4, None: no twin ran)."""
+    ``twin_execution_time_us``: the mean CPU time of a dispatch up to the end of the workload
+    twin's loop, what does not depend on the CPU's speed (version 4, None: no twin ran)."""
 
     path: str
     process: str | None
@@ -101,7 +101,6 @@ class ThreadMeasurement:
     deadline_misses: int
     dispatch_latency_us: Statistics | None = None
     twin_execution_time_us: float | None = None
-    twin_speed: float | None = None
 
     @property
     def load_percent(self) -> float | None:
@@ -115,8 +114,8 @@ class ThreadMeasurement:
 class ProcessMeasurement:
     """One process (ROS node): its CPU load from ``/proc`` (all its threads: callbacks,
     executor, serialization, DDS) and the host core it ran on (None: not bound);
-    ``twin_speed``: the workload twin's speed gauge over its threads (version 4, None: no twin
-    ran), see :func:`rosaadl.workflow.run.measure.twin_speed`."""
+    ``cpu_speed``: the speed of the CPUs it may run on as the run gauged them, loops per ms of
+    CPU (version 4, None: not gauged), see :mod:`rosaadl.workflow.run.cpu_speed`."""
 
     path: str
     node: str | None
@@ -124,7 +123,7 @@ class ProcessMeasurement:
     core: int | None
     classifier: str | None = None  #: the model's classifier of the process (``Pkg::type.impl``)
     profile: tuple[str, str] | None = None  #: (board, core) a profile of it is named after
-    twin_speed: float | None = None
+    cpu_speed: float | None = None
 
 
 @dataclass(frozen=True)
@@ -216,8 +215,7 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
             deadline_us=t.get("deadline_us"),
             deadline_misses=int(t["deadline_misses"]),
             dispatch_latency_us=Statistics.of(t.get("dispatch_latency_us")),
-            twin_execution_time_us=t["twin"]["execution_time_us"] if "twin" in t else None,
-            twin_speed=t["twin"]["speed"] if "twin" in t else None,
+            twin_execution_time_us=t.get("twin_execution_time_us"),
         )
         for t in document["threads"]
     )
@@ -229,7 +227,7 @@ def _build(document: dict[str, Any], source: str | None) -> Measurements:
             p.get("core"),
             p.get("classifier"),
             (p["profile"]["board"], p["profile"]["core"]) if "profile" in p else None,
-            p.get("twin_speed"),
+            p.get("cpu_speed"),
         )
         for p in document["processes"]
     )

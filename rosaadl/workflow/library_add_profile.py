@@ -39,10 +39,10 @@ from rosaadl.workflow.library_measurements import (
 )
 from rosaadl.workflow.library_nodes import bytes_of, instance_value, ns_of, us_text
 from rosaadl.workflow.library_profiles import (
+    CPU_SPEED,
     DISPATCH_LATENCY,
     PROFILE_SUFFIX,
     TWIN_EXECUTION_TIME,
-    TWIN_SPEED,
     ExpectedValues,
     ProfileBuilder,
     ProfiledImplementation,
@@ -81,10 +81,10 @@ def _header_comment(unit: EObject, source_name: str, merged: bool) -> str:
         carried = "-- Compute_Execution_Time (a measured run: no instruction rate, no MIPSBudget)"
         if _carries(unit, DISPATCH_LATENCY):
             carried += ",\n-- a timer thread its measured ROS_Properties::Dispatch_Latency"
-        if _carries(unit, TWIN_SPEED):
+        if _carries(unit, CPU_SPEED):
             carried += (
-                ",\n-- an emulated thread the CPU time its workload twin held and the CPU's\n"
-                "-- speed gauge (ROS_Properties::Twin_Execution_Time, Twin_Speed)"
+                ",\n-- the CPU time the workload twin held and the speed of the CPUs it ran on\n"
+                "-- (ROS_Properties::Twin_Execution_Time, Profiled_CPU_Speed)"
             )
         carried += ".\n\n"
     return (
@@ -306,13 +306,13 @@ def _check_values(
                     f"{us_text(m.dispatch_latency_ns)} (it has {latency}){overridden}",
                 )
             )
-        burned, speed = instance_value(thread, TWIN_EXECUTION_TIME), instance_value(thread, TWIN_SPEED)
-        if m.twin_speed is not None and (ns_of(burned) != m.twin_execution_time_ns or speed != m.twin_speed):
+        burned, speed = instance_value(thread, TWIN_EXECUTION_TIME), instance_value(thread, CPU_SPEED)
+        if m.cpu_speed is not None and (ns_of(burned) != m.twin_execution_time_ns or speed != m.cpu_speed):
             errors.append(
                 m.error(
                     "twin",
                     f"thread {item.thread} of {impl.process} does not carry {TWIN_EXECUTION_TIME} => "
-                    f"{us_text(m.twin_execution_time_ns)} and {TWIN_SPEED} => {m.twin_speed!r} "
+                    f"{us_text(m.twin_execution_time_ns)} and {CPU_SPEED} => {m.cpu_speed!r} "
                     f"(it has {burned} and {speed}){overridden}",
                 )
             )

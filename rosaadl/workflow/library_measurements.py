@@ -101,10 +101,10 @@ class Measurement:
     #: the executor's measured dispatch latency, whole µs in ns (a measured run's
     #: ``dispatch_latency_us`` max, rounded up); None: not measured (no CSV column gives it)
     dispatch_latency_ns: int | None = None
-    #: the workload twin's CPU time per dispatch (ns) and its process's speed gauge when the
-    #: run was measured (a measured run's ``twin`` and ``twin_speed``); None: no twin ran
+    #: the workload twin's CPU time per dispatch (ns, 0: no twin) and the speed of the process's
+    #: CPUs (a measured run's ``twin_execution_time_us`` and ``cpu_speed``); None: not gauged
     twin_execution_time_ns: int | None = None
-    twin_speed: float | None = None
+    cpu_speed: float | None = None
 
     @property
     def pdm(self) -> str:

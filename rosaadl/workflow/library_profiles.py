@@ -20,10 +20,10 @@
 
 A measured run (``measurements.json``) gives a timer thread's PDM its measured executor latency
 too, ``ROS_Properties::Dispatch_Latency => 1843 us;`` (:data:`DISPATCH_LATENCY`), and the
-threads of a process whose run gauged the CPU's speed what of their CET the workload twin held
-and the process's gauge,
-``ROS_Properties::Twin_Execution_Time => 3750 us; ROS_Properties::Twin_Speed => 331.2;``
-(:data:`TWIN_EXECUTION_TIME`, :data:`TWIN_SPEED`).
+threads of a process whose CPUs the run gauged what of their CET the workload twin held and
+the CPUs' speed,
+``ROS_Properties::Twin_Execution_Time => 3750 us; ROS_Properties::Profiled_CPU_Speed => 331.2;``
+(:data:`TWIN_EXECUTION_TIME`, :data:`CPU_SPEED`).
 
 The package names the node's types with ``renames`` (an implementation is declared in the
 package of its type or of an alias of it). A package of earlier profiles keeps what it holds
@@ -60,7 +60,7 @@ __all__ = [
     "PROFILE_SUFFIX",
     "DISPATCH_LATENCY",
     "TWIN_EXECUTION_TIME",
-    "TWIN_SPEED",
+    "CPU_SPEED",
     "ProfiledImplementation",
     "ExpectedValues",
     "ProfileBuilder",
@@ -71,10 +71,10 @@ __all__ = [
 PROFILE_SUFFIX = "_profiles"
 #: The property a thread PDM of a measured run gets its executor's dispatch latency in.
 DISPATCH_LATENCY = "ROS_Properties::Dispatch_Latency"
-#: The properties a thread PDM of a measured run gets its workload twin's burned CPU time and
-#: speed gauge in.
+#: The properties a thread PDM of a measured run gets the time its workload twin held and the
+#: speed of its CPUs in.
 TWIN_EXECUTION_TIME = "ROS_Properties::Twin_Execution_Time"
-TWIN_SPEED = "ROS_Properties::Twin_Speed"
+CPU_SPEED = "ROS_Properties::Profiled_CPU_Speed"
 
 _DATA_PORTS = ("dataPort", "eventDataPort")
 
@@ -388,7 +388,7 @@ class ProfileBuilder:
         if len(self.errors) > before or node_alias is None:
             return None
         properties: list[EObject] = []
-        ros = any(r.m.dispatch_latency_ns is not None or r.m.twin_speed is not None for r in rows)
+        ros = any(r.m.dispatch_latency_ns is not None or r.m.cpu_speed is not None for r in rows)
         if ros and "ROS_Properties" not in withs:
             withs.append("ROS_Properties")
         budget = first.mips_budget
@@ -460,9 +460,9 @@ class ProfileBuilder:
         properties = [value("Compute_Execution_Time", _time_range(m.cet_ns))]
         if m.dispatch_latency_ns is not None:
             properties.append(value(DISPATCH_LATENCY, _time(m.dispatch_latency_ns)))
-        if m.twin_execution_time_ns is not None and m.twin_speed is not None:
+        if m.twin_execution_time_ns is not None and m.cpu_speed is not None:
             properties.append(value(TWIN_EXECUTION_TIME, _time(m.twin_execution_time_ns)))
-            properties.append(value(TWIN_SPEED, _real(Decimal(str(m.twin_speed)), None)))
+            properties.append(value(CPU_SPEED, _real(Decimal(str(m.cpu_speed)), None)))
         pim_period = ns_of(instance_value(instance, "Period"))
         if m.period_ns is not None and pim_period != m.period_ns:
             properties.append(value("Period", _time(m.period_ns)))

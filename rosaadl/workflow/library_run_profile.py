@@ -25,11 +25,12 @@ per measured thread with a dispatch:
 * ``ROS_Properties::Dispatch_Latency``: the max of the thread's ``dispatch_latency_us`` (a
   timer thread's latency from its release to its start while its executor was idle, version 3),
   rounded up to a whole µs, when measured;
-* ``ROS_Properties::Twin_Execution_Time`` and ``ROS_Properties::Twin_Speed``, for every thread
-  of a process whose run measured the workload twin's speed gauge (version 4): what of the
-  execution time the twin held whatever the CPU's speed (its ``twin.execution_time_us``; 0 for
-  a thread the twin did not run in) and the process's gauge: ``analyze --compare`` rescales the
-  rest of the execution time to the speed a later run measures;
+* ``ROS_Properties::Twin_Execution_Time`` and ``ROS_Properties::Profiled_CPU_Speed``, for every
+  thread of a process whose CPUs the run gauged (``cpu_speed``, version 4): what of the
+  execution time the workload twin held whatever the CPU's speed (its
+  ``twin_execution_time_us``; 0 where no twin ran: user code) and the speed of the process's
+  CPUs: ``analyze --compare`` rescales the rest of the execution time to the speed a later run
+  measures;
 * no ``Raw_MIPS``, ``IPC`` or ``MIPSBudget``: a run without hardware counters measures no
   instruction rate, and the library leaves out what was not measured.
 
@@ -76,12 +77,11 @@ def middleware_per_dispatch(measurements: Measurements) -> dict[str, float]:
 
 
 def _twin(thread, speed: float | None) -> dict[str, object]:
-    """The workload twin's values of a profile row where its process measured the twin's
-    speed: the thread's speed-independent CPU time per dispatch (ns; 0 without a twin) and the
-    process's gauge."""
+    """The speed values of a profile row where the run gauged its process's CPUs: the thread's
+    speed-independent CPU time per dispatch (ns; 0 without a twin) and the CPUs' speed."""
     if speed is None:
         return {}
-    return {"twin_execution_time_ns": round((thread.twin_execution_time_us or 0) * 1000), "twin_speed": speed}
+    return {"twin_execution_time_ns": round((thread.twin_execution_time_us or 0) * 1000), "cpu_speed": speed}
 
 
 def run_measurement_rows(
@@ -133,7 +133,7 @@ def run_measurement_rows(
         for p in measurements.processes
     }
     middleware = middleware_per_dispatch(measurements)
-    speeds = {p.path: p.twin_speed for p in measurements.processes}
+    speeds = {p.path: p.cpu_speed for p in measurements.processes}
     sizes: dict[str, list[int | None]] = {}
     for topic in measurements.topics:
         if topic.port:
@@ -175,8 +175,8 @@ def run_measurement_rows(
             notes.append(
                 Diagnostic(
                     "warning",
-                    f"{where}: thread {thread.path} ran the workload twin, but its process has no "
-                    "twin_speed; its profile keeps no speed",
+                    f"{where}: thread {thread.path} ran the workload twin, but the run gauged no "
+                    "CPU of its process (no cpu_speed); its profile keeps no speed",
                     Location(file=file, line=lines.get(where), path=where),
                 )
             )

@@ -126,24 +126,24 @@ def test_a_hand_edited_value_is_refused_at_its_json_path_and_line() -> None:
         ),
         # what version 4 added, in a version 3 file, or edited wrong
         (
-            lambda d: d.update(version=3) or d["processes"][1].update(twin_speed=331.2),
-            "$.processes[1].twin_speed",
+            lambda d: d.update(version=3) or d["processes"][1].update(cpu_speed=331.2),
+            "$.processes[1].cpu_speed",
             "a member of version 4 in a version 3 file",
         ),
         (
-            lambda d: d.update(version=3) or d["threads"][1].update(twin=_TWIN),
-            "$.threads[1].twin",
+            lambda d: d.update(version=3) or d["threads"][1].update(twin_execution_time_us=2210.5),
+            "$.threads[1].twin_execution_time_us",
             "a member of version 4 in a version 3 file",
         ),
         (
-            lambda d: d.update(version=4) or d["processes"][0].update(twin_speed=0),
-            "$.processes[0].twin_speed",
+            lambda d: d.update(version=4) or d["processes"][0].update(cpu_speed=0),
+            "$.processes[0].cpu_speed",
             "not above 0",
         ),
         (
-            lambda d: d.update(version=4) or d["threads"][0].update(twin={"speed": 331.2}),
-            "$.threads[0].twin",
-            "missing 'execution_time_us'",
+            lambda d: d.update(version=4) or d["threads"][0].update(twin_execution_time_us="all"),
+            "$.threads[0].twin_execution_time_us",
+            "expected number",
         ),
     ],
 )
@@ -175,18 +175,16 @@ def test_version_2_records_the_period_scale_and_the_profile_of_each_process() ->
 
 
 _LATENCY = {"min": 612.5, "mean": 1034.25, "max": 4871.2}
-_TWIN = {"execution_time_us": 2210.5, "speed": 331.2}
 
 
-def test_version_4_records_the_workload_twin_of_threads_and_processes() -> None:
+def test_version_4_records_the_twin_s_time_and_the_speed_of_each_process_s_cpus() -> None:
     document = tracking_measurements()
     document["version"] = 4
-    document["threads"][0]["twin"] = _TWIN
-    document["processes"][0]["twin_speed"] = 331.2
+    document["threads"][0]["twin_execution_time_us"] = 2210.5
+    document["processes"][0]["cpu_speed"] = 331.2
     read = parse_measurements(tracking_measurements_text(document))
-    assert (read.threads[0].twin_execution_time_us, read.threads[0].twin_speed) == (2210.5, 331.2)
-    assert (read.threads[1].twin_execution_time_us, read.threads[1].twin_speed) == (None, None)
-    assert [p.twin_speed for p in read.processes] == [331.2, None]
+    assert [t.twin_execution_time_us for t in read.threads] == [2210.5, None]
+    assert [p.cpu_speed for p in read.processes] == [331.2, None]
 
 
 def test_version_3_records_the_dispatch_latency_of_timer_threads() -> None:

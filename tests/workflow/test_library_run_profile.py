@@ -135,17 +135,17 @@ def test_the_profiled_dispatch_latency_reaches_the_analysed_system(tmp_path, cap
 
 
 def _twin_run(tmp_path):
-    """The sample run as version 4: usb_cam's thread burned 2210.5 us per dispatch in its
-    workload twin, whose gauge ran 331.2 loops per CPU ms in that process; pos_to_cmd no twin."""
+    """The sample run as version 4: the workload twin held 2210.5 us of each dispatch of usb_cam's
+    thread, whose CPU the run gauged at 331.2 loops per CPU ms; pos_to_cmd's CPU not gauged."""
     document = tracking_measurements()
     document["version"] = 4
     document["run"].update(board="xu4", core="a15")
-    document["threads"][0]["twin"] = {"execution_time_us": 2210.5, "speed": 330.0}
-    document["processes"][0]["twin_speed"] = 331.2
+    document["threads"][0]["twin_execution_time_us"] = 2210.5
+    document["processes"][0]["cpu_speed"] = 331.2
     return write_tracking_measurements(tmp_path, document)
 
 
-def test_the_workload_twin_s_burned_time_and_speed_go_into_the_thread_pdm(tmp_path) -> None:
+def test_the_twin_s_time_and_the_cpu_speed_go_into_the_thread_pdm(tmp_path) -> None:
     out = tmp_path / "profiles"
     add_profiles(_twin_run(tmp_path), out)
     usb = (out / "nd_usb_cam_profiles.aadl").read_text()
@@ -153,15 +153,15 @@ def test_the_workload_twin_s_burned_time_and_speed_go_into_the_thread_pdm(tmp_pa
     assert (
         "      Compute_Execution_Time => 2700540 ns .. 2700540 ns;\n"
         "      ROS_Properties::Twin_Execution_Time => 2210500 ns;\n"
-        "      ROS_Properties::Twin_Speed => 331.2;\n"  # the process's gauge, not the thread's
+        "      ROS_Properties::Profiled_CPU_Speed => 331.2;\n"
     ) in usb
-    assert "-- speed gauge (ROS_Properties::Twin_Execution_Time, Twin_Speed)." in usb
+    assert "-- (ROS_Properties::Twin_Execution_Time, Profiled_CPU_Speed)." in usb
     pos = (out / "nd_pos_to_cmd_profiles.aadl").read_text()
     assert "Twin_" not in pos and "ROS_Properties" not in pos
     instance = instantiate(read_library([out]), "nd_usb_cam_profiles::usb_cam_nd.xu4_a15")
     thread = find_instance(instance, "image_broadcaster")
     assert property_value(thread, "ROS_Properties::Twin_Execution_Time").to("us") == 2210.5
-    assert property_value(thread, "ROS_Properties::Twin_Speed") == 331.2
+    assert property_value(thread, "ROS_Properties::Profiled_CPU_Speed") == 331.2
 
 
 def test_compare_rescales_a_profiled_process_to_the_speed_its_run_measured(tmp_path, capsys) -> None:
@@ -171,8 +171,8 @@ def test_compare_rescales_a_profiled_process_to_the_speed_its_run_measured(tmp_p
     system.write_text(tracking_profiled({"usbcam": "nd_usb_cam_profiles::usb_cam_nd.xu4_a15"}))
     document = tracking_measurements()
     document["version"] = 4
-    document["processes"][0]["twin_speed"] = 298.08  # the CPU at 0.9 x the profile's speed
-    document["processes"][1]["twin_speed"] = 400.0  # pos_to_cmd: its profile has no twin
+    document["processes"][0]["cpu_speed"] = 298.08  # the CPU at 0.9 x the profile's speed
+    document["processes"][1]["cpu_speed"] = 400.0  # pos_to_cmd: its profile has no speed
     (tmp_path / "slow").mkdir()
     slow = write_tracking_measurements(tmp_path / "slow", document)
     args = [str(SYSTEMS), str(out), str(system), "--root", "tracking_profiled::tracking_profiled.impl"]
@@ -191,7 +191,7 @@ def test_compare_rescales_a_profiled_process_to_the_speed_its_run_measured(tmp_p
     assert "0.90× the speed of the process's profile" in warning["message"]
     assert warning["path"].endswith("rem_trk_sw.usbcam")
     # a run at the profile's speed: the same prediction, no warning
-    document["processes"][0]["twin_speed"] = 331.2
+    document["processes"][0]["cpu_speed"] = 331.2
     (tmp_path / "same").mkdir()
     same = write_tracking_measurements(tmp_path / "same", document)
     main(["--format", "json", "analyze", *args, "--compare", str(same), "--only", "cpu,compare"])
@@ -328,8 +328,8 @@ def _rosmod_shaped_run(tmp_path, twin: bool = False) -> Path:
     }
     if twin:
         document["version"] = 4
-        threads[0]["twin"] = {"execution_time_us": 950.25, "speed": 301.0}
-        document["processes"][0]["twin_speed"] = 300.5
+        threads[0]["twin_execution_time_us"] = 950.25
+        document["processes"][0]["cpu_speed"] = 300.5
     write_tracking_measurements(tmp_path, document)
     return model
 
@@ -362,20 +362,20 @@ def test_a_thread_group_s_threads_get_the_twin_s_values_at_their_path(tmp_path) 
     add_profiles(tmp_path / "measurements.json", out, inputs=[model])
     text = (out / "rosmod_shaped_profiles.aadl").read_text()
     assert "ROS_Properties::Twin_Execution_Time => 950250 ns applies to Pinger.ping_timer;" in text
-    assert "ROS_Properties::Twin_Speed => 300.5 applies to Pinger.ping_timer;" in text
+    assert "ROS_Properties::Profiled_CPU_Speed => 300.5 applies to Pinger.ping_timer;" in text
     assert "ROS_Properties::Twin_Execution_Time => 0 us applies to Pinger.echo_timer;" in text
-    assert "ROS_Properties::Twin_Speed => 300.5 applies to Pinger.echo_timer;" in text
+    assert "ROS_Properties::Profiled_CPU_Speed => 300.5 applies to Pinger.echo_timer;" in text
     instance = instantiate(read_library([model, out]), "rosmod_shaped_profiles::Ping_Node.bbb_a8")
     thread = find_instance(instance, "Pinger.ping_timer")
     assert property_value(thread, "ROS_Properties::Twin_Execution_Time").to("ns") == 950250
-    assert property_value(thread, "ROS_Properties::Twin_Speed") == 300.5
+    assert property_value(thread, "ROS_Properties::Profiled_CPU_Speed") == 300.5
 
 
 def test_a_twin_without_its_process_s_gauge_keeps_no_speed_and_says_so(tmp_path) -> None:
     document = tracking_measurements()
     document["version"] = 4
     document["run"].update(board="xu4", core="a15")
-    document["threads"][1]["twin"] = {"execution_time_us": 900.0, "speed": 330.0}
+    document["threads"][1]["twin_execution_time_us"] = 900.0
     out = tmp_path / "profiles"
     result = add_profiles(write_tracking_measurements(tmp_path, document), out)
     assert "Twin_" not in (out / "nd_pos_to_cmd_profiles.aadl").read_text()
@@ -388,8 +388,8 @@ def test_an_out_of_range_twin_time_is_refused_at_its_path(tmp_path) -> None:
     document = tracking_measurements()
     document["version"] = 4
     document["run"].update(board="xu4", core="a15")
-    document["threads"][0]["twin"] = {"execution_time_us": 1e300, "speed": 330.0}
-    document["processes"][0]["twin_speed"] = 330.0
+    document["threads"][0]["twin_execution_time_us"] = 1e300
+    document["processes"][0]["cpu_speed"] = 330.0
     with pytest.raises(RosaadlError) as caught:
         add_profiles(write_tracking_measurements(tmp_path, document), tmp_path / "profiles")
     assert any(e.location.path == "$.threads[0].twin.execution_time_us" for e in caught.value.errors)

@@ -55,9 +55,9 @@ def _write(folder, name, lines):
 
 @pytest.fixture
 def traces(tmp_path):
-    """cam publishes /image every 10 ms; trk handles each image (2 ms CPU; its workload twin
-    ran 600 loops in 1.5 ms, 1.8 ms into the dispatch, or, every other image, no loop 1 ms into
-    it) and publishes /point from a 20 ms timer; cmd receives /point. Times in ns from 1 s."""
+    """cam publishes /image every 10 ms; trk handles each image (2 ms CPU, of which its
+    workload twin held 1.8 ms, or 1 ms every other image) and publishes /point from a 20 ms
+    timer; cmd receives /point. Times in ns from 1 s."""
     t0 = 1000 * MS
     cam = ["N /cam", "T pub camera_thread", "O /image camera_thread.out"]
     trk = ["N /trk", "T work tracker", "T send sender", "O /point sender.out"]
@@ -69,7 +69,7 @@ def traces(tmp_path):
         trk.append(f"R /image {k + 1} {release + MS} {release + 2 * MS}")
         trk.append(
             f"D work {release + 2 * MS} {release + 2 * MS} {release + 4 * MS} {2 * MS} "
-            + (f"600 {3 * MS // 2} {9 * MS // 5}" if k % 2 else f"0 0 {MS}")
+            + (f"{9 * MS // 5}" if k % 2 else f"{MS}")
         )
     for j in range(5):
         release = t0 + j * 20 * MS + 5 * MS
@@ -77,8 +77,7 @@ def traces(tmp_path):
         trk.append(f"P /point {j + 1} {release + MS} {release}")
         cmd.append(f"R /point {j + 1} {release + MS} {release + 3 * MS}")
     cmd.append("D recv 5 6")  # a line cut short by a killed node
-    cmd.append(f"D recv {t0} {t0} {t0 + MS} {MS} 600")  # the twin's gauge cut short
-    cmd.append(f"D recv {t0} {t0} {t0 + MS} {MS} 600 {MS}")
+    cmd.append(f"D recv {t0} {t0} {t0 + MS} {MS} {MS} 600")  # too many fields
     _write(tmp_path, "cam", cam)
     _write(tmp_path, "trk", trk)
     _write(tmp_path, "cmd", cmd)
@@ -98,7 +97,7 @@ TOPICS = [
 
 def test_a_trace_is_read_and_a_cut_line_counted(traces) -> None:
     trace = read_trace(traces / "cmd.1.trace")
-    assert trace.node == "/cmd" and trace.bad_lines == 3
+    assert trace.node == "/cmd" and trace.bad_lines == 2
     assert len(trace.received["/point"]) == 5
 
 
@@ -139,6 +138,7 @@ def test_the_document_validates_and_holds_threads_processes_topics_chains(traces
         chains=chains,
         run={"duration_s": 0.1, "emulate": True, "host_cores": 2},
         root="pkg::top.impl",
+        cpu_speeds={"/trk": 301.5, "/cmd": 290.0},  # /cmd: measured no CPU load, no process row
     )
     read = parse_measurements(json.dumps(document))
     camera = next(t for t in read.threads if t.path == "top_Instance.sw.cam.camera_thread")
@@ -152,12 +152,12 @@ def test_the_document_validates_and_holds_threads_processes_topics_chains(traces
     assert read.topics[0].bandwidth_bytes_per_s == 6400.0
     assert read.chains[0].samples == 5 and read.chains[0].latency_us.mean == 7000.0
     assert document["version"] == 4
-    # the workload twin of trk's work thread: 1.8 and 1 ms into its dispatches (1.4 on the mean,
-    # the dispatches without a loop counted), 600 loops per 1.5 ms where it looped
+    # the workload twin of trk's work thread held 1.8 and 1 ms of its dispatches: 1.4 on the mean
     work = next(t for t in read.threads if t.path == "top_Instance.sw.trk.tracker")
-    assert (work.twin_execution_time_us, work.twin_speed) == (1400.0, 400.0)
-    assert camera.twin_speed is None and "twin" not in document["threads"][0]
-    assert [p.twin_speed for p in read.processes] == [None, 400.0]
+    assert work.twin_execution_time_us == 1400.0
+    assert camera.twin_execution_time_us is None and "twin_execution_time_us" not in document["threads"][0]
+    # the CPU speed of each node as the run gauged it
+    assert [p.cpu_speed for p in read.processes] == [None, 301.5]
     # a plan that does not say which threads run on a timer: no dispatch latency is claimed
     assert all("dispatch_latency_us" not in row for row in document["threads"])
 

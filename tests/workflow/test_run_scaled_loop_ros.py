@@ -152,16 +152,16 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
     plain = _items(loop["again"], "cpu_load_percent")
     after = _items(loop["again"], "cpu_load_at_run_speed_percent")
     processes = ("rem_trk_sw.usbcam", "rem_trk_sw.tracker", "rem_trk_sw.poscmd")
-    # every process ran the workload twin: its profile and the second run have its speed gauge
+    # the CPUs of every process were gauged in both runs: its profile and the second run have a speed
     assert set(after) == set(processes), sorted(after)
     errors = {p: after[p]["error_percent"] for p in processes}
-    speeds = {p.path.rpartition(".")[2]: p.twin_speed for p in read_measurements(loop["second"]).processes}
+    speeds = {p.path.rpartition(".")[2]: p.cpu_speed for p in read_measurements(loop["second"]).processes}
     print(
         "per-process CPU load error, profiled prediction vs second run (%):",
         errors,
         "at the profile's speed:",
         {p: plain[p]["error_percent"] for p in processes},
-        "twin speeds:",
+        "CPU speeds:",
         speeds,
     )
     # the tracker (90 % of the application's CPU time) and the whole application: within 5 %,

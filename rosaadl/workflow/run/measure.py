@@ -5,7 +5,7 @@ With the node parameter ``rosaadl.trace`` true, each generated node writes
 ``<run folder>/trace/<node>.<pid>.trace`` (the ``Tracer`` of the generated code): a header
 (``N`` its name, ``T ident thread`` its threads, ``O topic port`` its out ports) then one line
 per event, times from the system-wide ``CLOCK_MONOTONIC``:
-``D thread release start end cpu [loops looped fixed]``, ``P topic seq published dispatch_start``,
+``D thread release start end cpu [fixed]``, ``P topic seq published dispatch_start``,
 ``R topic seq published received``. Only events inside the measured window (from the moment
 every node is up to the stop) count.
 
@@ -13,14 +13,14 @@ every node is up to the stop) count.
   execution time (CPU time of the dispatch's own thread), response time (release to end),
   deadline misses (the node's ``<thread>.deadline`` parameter); for a thread on a periodic
   timer, its dispatch latency (:func:`idle_dispatch_latencies`: release to start of the
-  dispatches released while its executor was idle); where the workload twin ran, its ``twin``:
-  the mean CPU time per dispatch up to the end of the twin's loop (``fixed``: what the twin holds
-  to the CET whatever the CPU's speed) and the loop's speed gauge (:func:`twin_speed`);
+  dispatches released while its executor was idle); where the workload twin ran, its
+  ``twin_execution_time_us``: the mean CPU time per dispatch up to the end of the twin's loop
+  (``fixed``: what the twin holds to the CET whatever the CPU's speed);
 * per process: CPU load, the CPU time of its threads over the window (the scheduler's count of
   each thread, ``/proc/PID/task/TID/schedstat``, in ns; ``/proc/PID/stat``'s user + system
   time, in 10 ms ticks, where the kernel keeps no such count) and the core it was bound to
-  (its CPU affinity, when it is one core); where the twin ran, its ``twin_speed`` (the gauge
-  over all its threads' dispatches);
+  (its CPU affinity, when it is one core); its ``cpu_speed``, the mean speed of the CPUs it
+  may run on as the run gauged them (:mod:`~rosaadl.workflow.run.cpu_speed`);
 * per topic: messages, rate, bytes per message (the run's monitor) and bandwidth, with the model
   port that publishes it;
 * per chain (a flow of the model as processes in order): end-to-end latency, each message on the
@@ -58,7 +58,6 @@ __all__ = [
     "chain_plans",
     "planned_chains",
     "idle_dispatch_latencies",
-    "twin_speed",
 ]
 
 #: The folder of the run folder the nodes write their traces into.
@@ -87,9 +86,9 @@ class NodeTrace:
     #: or end lies outside): they kept the executor busy at the window's edges
     edges: list[tuple[int, int]] = field(default_factory=list)
     published: dict[tuple[str, int], int] = field(default_factory=dict)  # (topic, seq) -> dispatch start
-    #: thread ident -> (dispatches, loops, their CPU ns, CPU ns up to the loop's end) of the
-    #: workload twin in the window
-    twin: dict[str, tuple[int, int, int, int]] = field(default_factory=dict)
+    #: thread ident -> (dispatches, their CPU ns up to the end of the workload twin's loop) in
+    #: the window
+    twin: dict[str, tuple[int, int]] = field(default_factory=dict)
     received: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)  # topic -> (recv, seq, pub)
     bad_lines: int = 0
 
@@ -118,16 +117,13 @@ def read_trace(path: Path, window: tuple[int, int] | None = None) -> NodeTrace:
                 trace.threads[parts[1]] = parts[2]
             elif kind == "O" and len(parts) == 3:
                 trace.ports[parts[1]] = parts[2]
-            elif kind == "D" and len(parts) in (6, 9):
-                release, start, end, cpu, *twin = (int(p) for p in parts[2:])
+            elif kind == "D" and len(parts) in (6, 7):
+                release, start, end, cpu, *fixed = (int(p) for p in parts[2:])
                 if low <= release and end <= high:
                     trace.dispatches.setdefault(parts[1], []).append((release, start, end, cpu))
-                    if twin:
-                        held = trace.twin.get(parts[1], (0, 0, 0, 0))
-                        trace.twin[parts[1]] = (
-                            held[0] + 1,
-                            *(a + b for a, b in zip(held[1:], twin, strict=True)),
-                        )
+                    if fixed:
+                        count, total = trace.twin.get(parts[1], (0, 0))
+                        trace.twin[parts[1]] = (count + 1, total + fixed[0])
                 elif end >= low and start <= high:
                     trace.edges.append((start, end))
             elif kind == "P" and len(parts) == 5:
@@ -233,26 +229,17 @@ def idle_dispatch_latencies(
     return out
 
 
-def twin_speed(loops: int, cpu_ns: int) -> float | None:
-    """The speed gauge of the workload twin: iterations of its burning loop (``twin_gauge`` of
-    the generated code, a few µs of Python object work each) per ms of the CPU time they took,
-    None without any. The twin burns each dispatch's execution time as CPU time, whatever the
-    CPU's speed; the executor, serialization and DDS do work, whose CPU time grows as the CPU
-    slows (a throttled or shared CPU): two runs are comparable where their gauges agree."""
-    return round(loops / cpu_ns * 1e6, 3) if loops > 0 and cpu_ns > 0 else None
-
-
 def _thread_row(
     process_path: str,
     thread: str,
     events: list,
     deadline_s: float | None,
     spans: list[tuple[int, int]] | None = None,
-    twin: tuple[int, int, int, int] | None = None,
+    twin: tuple[int, int] | None = None,
 ) -> dict[str, Any]:
     """One thread's row; ``spans``: ``(start, end)`` of every dispatch of its process when the
     thread runs on a periodic timer (its dispatch latency is measured), else None; ``twin``: the
-    workload twin's (dispatches, loops, their CPU ns, CPU ns up to the loop's end) where it ran."""
+    workload twin's (dispatches, their CPU ns up to the loop's end) where it ran."""
     events = sorted(events)
     releases = [e[0] for e in events]
     gaps = [(b - a) / 1000 for a, b in itertools.pairwise(releases)]
@@ -273,11 +260,8 @@ def _thread_row(
         row["deadline_us"] = round(deadline_us, 3)
     if spans is not None:
         row["dispatch_latency_us"] = _stats(idle_dispatch_latencies(events, spans))
-    if twin is not None and twin_speed(twin[1], twin[2]) is not None:
-        row["twin"] = {
-            "execution_time_us": round(twin[3] / twin[0] / 1000, 3),
-            "speed": twin_speed(twin[1], twin[2]),
-        }
+    if twin is not None and twin[0]:
+        row["twin_execution_time_us"] = round(twin[1] / twin[0] / 1000, 3)
     return row
 
 
@@ -328,14 +312,17 @@ def measurements_document(
     run: dict[str, Any],
     root: str | None = None,
     profiles: dict[str, tuple[str, str]] | None = None,
+    cpu_speeds: dict[str, float] | None = None,
 ) -> dict[str, Any]:
     """The ``measurements.json`` document of a run: ``nodes`` are the plan's
     :class:`~rosaadl.workflow.run.plan.NodeLaunch` (full name, process path, parameters, the
     threads on a periodic timer: only these get a ``dispatch_latency_us``),
     ``cpu_load``, ``cores`` and ``profiles`` (the board and core a profile of the process is
     named after, :mod:`~rosaadl.workflow.run.profiles`) by node full name, ``topics`` the run's
-    topic results. ``run.board`` and ``run.core`` are set when every process has the same."""
+    topic results, ``cpu_speeds`` the speed of each node's CPUs. ``run.board`` and ``run.core`` are
+    set when every process has the same."""
     profiles = profiles or {}
+    cpu_speeds = cpu_speeds or {}
     threads, processes, ports = [], [], {}
     for node in nodes:
         trace = traces.get(node.full_name)
@@ -350,12 +337,8 @@ def measurements_document(
             if node.full_name in profiles:
                 board, core = profiles[node.full_name]
                 row["profile"] = {"board": board, "core": core}
-            if trace is not None:
-                speed = twin_speed(
-                    sum(t[1] for t in trace.twin.values()), sum(t[2] for t in trace.twin.values())
-                )
-                if speed is not None:
-                    row["twin_speed"] = speed
+            if node.full_name in cpu_speeds:
+                row["cpu_speed"] = cpu_speeds[node.full_name]
             processes.append(row)
         if trace is None:
             continue

@@ -1,6 +1,7 @@
 """The measured window of a ``rosaadl run … --measure``: the trace folder the nodes write into,
-``/proc`` sampled when the S seconds begin and end, and ``measurements.json`` written at the end
-(see :mod:`~rosaadl.workflow.run.measure`)."""
+``/proc`` sampled when the S seconds begin and end, the speed of the nodes' CPUs gauged over them
+(:mod:`~rosaadl.workflow.run.cpu_speed`), and ``measurements.json`` written at the end (see
+:mod:`~rosaadl.workflow.run.measure`)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from rosaadl.fileio import atomic_write_text
+from rosaadl.workflow.run.cpu_speed import CpuSpeedGauges
 from rosaadl.workflow.run.measure import (
     MEASUREMENTS_FILE,
     TRACE_FOLDER,
@@ -58,6 +60,9 @@ class MeasuredWindow:
         self.cores: dict[str, int | None] = {}
         self.threads_before: dict[str, dict[int, int] | None] = {}
         self.threads_after: dict[str, dict[int, int] | None] = {}
+        self.gauges = CpuSpeedGauges(folder / TRACE_FOLDER)
+        self.allowed: dict[str, set[int]] = {}  # node -> the CPUs it may run on
+        self.cpu_speeds: dict[int, float] = {}
 
     def parameters(self) -> list[tuple[str, object]]:
         return TRACE_PARAMETERS(self.traces)
@@ -80,12 +85,28 @@ class MeasuredWindow:
         self.cores = {
             p.node.full_name: process_core(p.process.pid) for p in self.processes if p.process is not None
         }
+        for p in self.processes:
+            try:
+                self.allowed[p.node.full_name] = set(os.sched_getaffinity(p.process.pid))
+            except (AttributeError, OSError):
+                continue  # not started, or ended
+        self.gauges.start(set().union(*self.allowed.values()))
         self.started_ns = time.monotonic_ns()
 
     def end(self) -> None:
         self.ended_ns = time.monotonic_ns()
         self.cpu_after = self._sample()
         self.threads_after = self._sample_threads()
+        self.cpu_speeds = self.gauges.stop()
+
+    def process_speeds(self) -> dict[str, float]:
+        """Per node: the mean speed of the gauged CPUs it may run on."""
+        out = {}
+        for name, cpus in self.allowed.items():
+            speeds = [self.cpu_speeds[cpu] for cpu in sorted(cpus) if cpu in self.cpu_speeds]
+            if speeds:
+                out[name] = round(sum(speeds) / len(speeds), 3)
+        return out
 
     def write(self, plan: Any, result: Any, options: Any) -> Path:
         """Aggregate the traces and the samples into ``measurements.json`` (checked against its
@@ -117,6 +138,7 @@ class MeasuredWindow:
             },
             root=options.root,
             profiles={n.full_name: run_profile(n.profile, emulate=options.emulate) for n in plan.nodes},
+            cpu_speeds=self.process_speeds(),
         )
         text = json.dumps(document, indent=2) + "\n"
         target = self.folder / MEASUREMENTS_FILE

@@ -229,6 +229,7 @@ def run_application(
         options = replace(options, duration=window_s)
         result.duration = window_s
     monitor: subprocess.Popen | None = None
+    window: MeasuredWindow | None = None
     processes: list[NodeProcess] = []
     counts_file = logs / "monitor.json"
     try:
@@ -253,6 +254,8 @@ def run_application(
         progress(f"stopping {len(processes)} node(s)")
         stop_nodes(processes, grace=options.grace)
     finally:
+        if window is not None:
+            window.gauges.stop()  # the gauges of a run that ended early (nothing once stopped)
         if monitor is not None and monitor.poll() is None:
             stop_monitor(monitor)
         stop_nodes([p for p in processes if p.running()], grace=options.grace)
