@@ -39,13 +39,17 @@ CLAIM = 5.0
 REACHED = 0.97
 #: The run-to-run spread of a small process's measured CPU load here (percent of its load), with
 #: the timers on their period grid, whole periods measured and the prediction taken at the CPU
-#: speed of the run: this virtual machine's CPU speed varied by up to 50 % between two runs (the
-#: workload twin's gauge 220 to 342 loops per CPU ms within an hour), the middleware of the
-#: small processes (pos_to_cmd 0.85 % of a CPU, usb_cam 3.7 %, about half of each rclpy's
-#: executor and DDS) with it, and the gauge follows that only in part: in 20 loops the
-#: rescaled prediction missed by up to 12 % (usb_cam, its run 51 % slower than its profile's)
-#: and 10.8 % (pos_to_cmd; at the profile's speed: 12 % and 22 %).
+#: speed of the run: this virtual machine's CPU ran up to 40 % slower in some runs (the gauge 185
+#: to 342 loops per CPU ms within a few hours), the middleware of the small processes (pos_to_cmd
+#: 0.85 % of a CPU, usb_cam 3.7 %, half or more of each rclpy's executor and DDS) with it, and
+#: the gauge follows that only in part: in 10 loops where the two runs' CPU speeds were within
+#: :data:`SPEED_SPREAD` the rescaled prediction missed by up to 8.9 % (pos_to_cmd; at the
+#: profile's speed 11.6 %).
 REPEATABILITY = 15.0
+#: Two runs whose gauged CPU speeds differ by more than this part ran on what is no longer the
+#: same machine (once in 10 loops here: 38 %, the rescaled prediction then 15.5 % off): there
+#: the comparison must say so (a warning), and the process is not held to REPEATABILITY.
+SPEED_SPREAD = 0.2
 #: The period scale of the runs (see the module docstring).
 SCALE = 3.0
 
@@ -155,7 +159,13 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
     # the CPUs of every process were gauged in both runs: its profile and the second run have a speed
     assert set(after) == set(processes), sorted(after)
     errors = {p: after[p]["error_percent"] for p in processes}
-    speeds = {p.path.rpartition(".")[2]: p.cpu_speed for p in read_measurements(loop["second"]).processes}
+    speeds = {
+        run: {
+            p.path.partition("_Instance.")[2] or p.path: p.cpu_speed
+            for p in read_measurements(loop[run]).processes
+        }
+        for run in ("first", "second")
+    }
     print(
         "per-process CPU load error, profiled prediction vs second run (%):",
         errors,
@@ -170,8 +180,17 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
         predicted, measured = (sum(items[p][key] for p in processes) for key in ("predicted", "measured"))
         assert abs(items["rem_trk_sw.tracker"]["error_percent"]) <= CLAIM, errors
         assert abs(measured - predicted) / predicted * 100 <= CLAIM, (predicted, measured)
-    # each process within the repeatability of its measurement (see REPEATABILITY)
+    # each process within the repeatability of its measurement (see REPEATABILITY), where the two
+    # runs' CPUs ran at about one speed; else the comparison says that they did not
+    warned = {
+        w["path"].partition("_Instance.")[2]
+        for w in loop["again"]["warnings"]
+        if "the speed of the process's profile" in w["message"] and w["path"]
+    }
     for p in processes:
+        if abs(speeds["first"][p] / speeds["second"][p] - 1) > SPEED_SPREAD:
+            assert p in warned, (p, loop["again"]["warnings"])
+            continue
         assert abs(errors[p]) <= REPEATABILITY, (p, after[p], errors)
 
 
