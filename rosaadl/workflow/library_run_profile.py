@@ -151,26 +151,25 @@ def run_measurement_rows(
             )
             continue
         latency = thread.dispatch_latency_us
-        if latency is not None and latency.max > _MAX_TIME_US:
-            at = f"{where}.dispatch_latency_us.max"
-            errors.append(
+        burned = thread.twin_execution_time_us
+        too_long = [
+            (f"{where}.{member}", value)
+            for member, value in (
+                ("dispatch_latency_us.max", None if latency is None else latency.max),
+                ("twin_execution_time_us", burned),
+            )
+            if value is not None and value > _MAX_TIME_US
+        ]
+        if too_long:
+            errors += [
                 MeasurementError(
-                    f"{at[2:]}: {latency.max:g} us is out of range (at most {_MAX_TIME_US} us)",
+                    f"{at[2:]}: {value:g} us is out of range (at most {_MAX_TIME_US} us)",
                     Location(file=file, line=lines.get(at, lines.get(where, 1)), path=at),
                 )
-            )
+                for at, value in too_long
+            ]
             continue
         process = thread.process or thread.path.rpartition(".")[0]
-        burned = thread.twin_execution_time_us
-        if burned is not None and burned > _MAX_TIME_US:
-            at = f"{where}.twin.execution_time_us"
-            errors.append(
-                MeasurementError(
-                    f"{at[2:]}: {burned:g} us is out of range (at most {_MAX_TIME_US} us)",
-                    Location(file=file, line=lines.get(at, lines.get(where, 1)), path=at),
-                )
-            )
-            continue
         if burned is not None and speeds.get(process) is None:
             notes.append(
                 Diagnostic(

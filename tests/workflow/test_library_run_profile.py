@@ -392,7 +392,7 @@ def test_an_out_of_range_twin_time_is_refused_at_its_path(tmp_path) -> None:
     document["processes"][0]["cpu_speed"] = 330.0
     with pytest.raises(RosaadlError) as caught:
         add_profiles(write_tracking_measurements(tmp_path, document), tmp_path / "profiles")
-    assert any(e.location.path == "$.threads[0].twin.execution_time_us" for e in caught.value.errors)
+    assert any(e.location.path == "$.threads[0].twin_execution_time_us" for e in caught.value.errors)
     assert not (tmp_path / "profiles").exists()
 
 
