@@ -205,7 +205,6 @@ def load_at_speed(
 def _twin_profile(thread: Any) -> tuple[Fraction, float] | None:
     """(twin execution time in µs, CPU speed) a thread's profile carries, else None."""
     burned, speed = property_value(thread, _TWIN_EXECUTION_TIME), property_value(thread, _CPU_SPEED)
-    speed = getattr(speed, "value", speed)
     if burned is None or not isinstance(speed, (int, float)) or speed <= 0:
         return None
     try:

@@ -53,6 +53,7 @@ __all__ = [
     "process_cpu_seconds",
     "thread_cpu_ns",
     "cpu_seconds_between",
+    "process_cpus",
     "process_core",
     "measurements_document",
     "chain_plans",
@@ -183,13 +184,19 @@ def cpu_seconds_between(before: dict[int, int], after: dict[int, int]) -> float:
     return sum(ns - before.get(tid, 0) for tid, ns in after.items()) / 1e9
 
 
-def process_core(pid: int) -> int | None:
-    """The one core process ``pid`` may run on, None when it may run on several (or is gone)."""
+def process_cpus(pid: int) -> set[int]:
+    """The CPUs process ``pid`` may run on (its affinity; none when it is gone)."""
     try:
-        cores = os.sched_getaffinity(pid)
+        return set(os.sched_getaffinity(pid))
     except OSError:
-        return None
-    return next(iter(cores)) if len(cores) == 1 else None
+        return set()
+
+
+def process_core(pid: int, cpus: set[int] | None = None) -> int | None:
+    """The one core process ``pid`` may run on (``cpus``: its affinity, when already read), None
+    when it may run on several (or is gone)."""
+    cpus = process_cpus(pid) if cpus is None else cpus
+    return next(iter(cpus)) if len(cpus) == 1 else None
 
 
 def _stats(values: list[float]) -> dict[str, float] | None:

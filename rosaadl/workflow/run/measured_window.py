@@ -22,6 +22,7 @@ from rosaadl.workflow.run.measure import (
     measurements_document,
     process_core,
     process_cpu_seconds,
+    process_cpus,
     read_traces,
     thread_cpu_ns,
 )
@@ -82,14 +83,11 @@ class MeasuredWindow:
     def begin(self) -> None:
         self.threads_before = self._sample_threads()
         self.cpu_before = self._sample()
+        started = [p for p in self.processes if p.process is not None]
+        self.allowed = {p.node.full_name: process_cpus(p.process.pid) for p in started}
         self.cores = {
-            p.node.full_name: process_core(p.process.pid) for p in self.processes if p.process is not None
+            p.node.full_name: process_core(p.process.pid, self.allowed[p.node.full_name]) for p in started
         }
-        for p in self.processes:
-            try:
-                self.allowed[p.node.full_name] = set(os.sched_getaffinity(p.process.pid))
-            except (AttributeError, OSError):
-                continue  # not started, or ended
         self.gauges.start(set().union(*self.allowed.values()))
         self.started_ns = time.monotonic_ns()
 
@@ -98,6 +96,10 @@ class MeasuredWindow:
         self.cpu_after = self._sample()
         self.threads_after = self._sample_threads()
         self.cpu_speeds = self.gauges.stop()
+
+    def stop_gauges(self) -> None:
+        """Stop the CPU speed gauges of a run that ended early (nothing once stopped)."""
+        self.gauges.stop()
 
     def process_speeds(self) -> dict[str, float]:
         """Per node: the mean speed of the gauged CPUs it may run on."""

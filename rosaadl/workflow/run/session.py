@@ -255,7 +255,7 @@ def run_application(
         stop_nodes(processes, grace=options.grace)
     finally:
         if window is not None:
-            window.gauges.stop()  # the gauges of a run that ended early (nothing once stopped)
+            window.stop_gauges()
         if monitor is not None and monitor.poll() is None:
             stop_monitor(monitor)
         stop_nodes([p for p in processes if p.running()], grace=options.grace)
