@@ -4,10 +4,10 @@ tracker's 111 % of a core becomes 37 %; ``auto``'s 1.9, 58 %, leaves a 2-core ma
 other work too little room: there the tracker missed 8 % of its images), measured; its
 measurements made into profiles (``library add-profile``, no hand edit), the model analysed
 again with them, and that prediction of each process's CPU load held to a second measured run
-(within 5 %, the paper's claim, for the tracker and the whole application, and for each process
-within 5 % or the measurement's run-to-run spread, :data:`REPEATABILITY`, the prediction taken at
-the CPU speed the second run measured: ``cpu_load_at_run_speed_percent``); the executor
-analysis's bounds of the scaled model beside the measured callbacks and chain.
+(within 5 %, the paper's claim, for the tracker, the whole application and each process, the
+prediction taken at the CPU speed the second run measured: ``cpu_load_at_run_speed_percent``;
+:data:`DURATION` says why the runs are 30 s long); the executor analysis's bounds of the scaled
+model beside the measured callbacks and chain.
 
 A run whose threads did not all reach 97 % of their modelled dispatches (the machine stalled, or
 another program took the CPUs) is run again, at most twice, so that a stall does not decide.
@@ -25,6 +25,7 @@ import pytest
 from ros_runtime import runtime_marks
 
 import rosaadl.library
+from rosaadl.analysis.compare import SPEED_TOLERANCE
 from rosaadl.importers.measurements import read_measurements
 from tests.measurements_sample import tracking_profiled
 
@@ -32,23 +33,26 @@ pytestmark = [*runtime_marks(), pytest.mark.slow]
 
 SYSTEMS = Path(rosaadl.library.__file__).parent / "systems"
 ROOT = "sys_tracking::tracking.impl"
-DURATION = 10
 #: The paper's claim: the analyses predict within 5 %.
 CLAIM = 5.0
 #: The modelled dispatches a run must reach to count (a stalled run is run again).
 REACHED = 0.97
-#: The run-to-run spread of a small process's measured CPU load here (percent of its load), with
-#: the timers on their period grid, whole periods measured and the prediction taken at the CPU
-#: speed of the run: this virtual machine's CPU ran up to 40 % slower in some runs (the gauge 185
-#: to 342 loops per CPU ms within a few hours), the middleware of the small processes (pos_to_cmd
-#: 0.85 % of a CPU, usb_cam 3.7 %, half or more of each rclpy's executor and DDS) with it, and
-#: the gauge follows that only in part: in 10 loops where the two runs' CPU speeds were within
-#: :data:`SPEED_SPREAD` the rescaled prediction missed by up to 8.9 % (pos_to_cmd; at the
-#: profile's speed 11.6 %).
-REPEATABILITY = 15.0
-#: Two runs whose gauged CPU speeds differ by more than this part ran on what is no longer the
-#: same machine (once in 10 loops here: 38 %, the rescaled prediction then 15.5 % off): there
-#: the comparison must say so (a warning), and the process is not held to REPEATABILITY.
+#: Seconds measured per run. A process's measured CPU load is its mean over the window, and the
+#: small processes' (pos_to_cmd 0.85 % of a CPU, usb_cam 3.7 %: half or more of each rclpy's
+#: executor and DDS, whose CPU time per wake-up varies with how the other processes on the CPU
+#: and the host leave the caches: ±13 % from one 3 s window of a run to the next) repeats over
+#: 10 s windows only to about ±9 %: the profiled prediction then missed by up to 8.9 %
+#: (pos_to_cmd, 4 loops in 10 over 5 %). Over 30 s and 40 s windows (8 and 18 loops here) each
+#: process whose two runs' CPUs ran within SPEED_TOLERANCE of one speed (43 of 78) was within
+#: 5 %, worst 2.8 %.
+DURATION = 30
+#: A process whose two runs' CPU speeds differ by more than the comparison's SPEED_TOLERANCE (it
+#: warns) ran on what is not quite the same machine: the gauge follows the middleware only in part
+#: (its run-to-run change about 0.7 times the gauge's here, 35 loops), so the rescaled prediction
+#: is held to this instead (in the 26 loops above, with speed changes of 5 to 20 %: worst 5.5 %).
+SHIFTED = 10.0
+#: Beyond this speed change the process is held only to the comparison's warning (twice in 36
+#: loops here: 38 % and 28 %, the rescaled prediction then 15.5 % and 6.0 % off).
 SPEED_SPREAD = 0.2
 #: The period scale of the runs (see the module docstring).
 SCALE = 3.0
@@ -180,18 +184,21 @@ def test_per_process_load_is_compared_then_predicted_within_5_percent_after_prof
         predicted, measured = (sum(items[p][key] for p in processes) for key in ("predicted", "measured"))
         assert abs(items["rem_trk_sw.tracker"]["error_percent"]) <= CLAIM, errors
         assert abs(measured - predicted) / predicted * 100 <= CLAIM, (predicted, measured)
-    # each process within the repeatability of its measurement (see REPEATABILITY), where the two
-    # runs' CPUs ran at about one speed; else the comparison says that they did not
+    # each process within 5 % where the two runs' CPUs ran at one speed; else the comparison says
+    # that they did not, and the rescaled prediction is held to SHIFTED (see there)
     warned = {
         w["path"].partition("_Instance.")[2]
         for w in loop["again"]["warnings"]
         if "the speed of the process's profile" in w["message"] and w["path"]
     }
     for p in processes:
-        if abs(speeds["first"][p] / speeds["second"][p] - 1) > SPEED_SPREAD:
-            assert p in warned, (p, loop["again"]["warnings"])
+        shift = abs(speeds["first"][p] / speeds["second"][p] - 1)
+        if shift <= SPEED_TOLERANCE:
+            assert abs(errors[p]) <= CLAIM, (p, after[p], errors)
             continue
-        assert abs(errors[p]) <= REPEATABILITY, (p, after[p], errors)
+        assert p in warned, (p, loop["again"]["warnings"])
+        if shift <= SPEED_SPREAD:
+            assert abs(errors[p]) <= SHIFTED, (p, after[p], errors)
 
 
 @pytest.mark.parametrize("analysis", ["compared", "again"], ids=["library-model", "profiled-model"])
