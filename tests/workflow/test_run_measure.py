@@ -19,6 +19,7 @@ from rosaadl.workflow.run.measure import (
     process_cpu_seconds,
     read_trace,
     read_traces,
+    single_cpu,
 )
 from rosaadl.workflow.run.measured_window import whole_periods
 from rosaadl.workflow.run.plan import NodeLaunch
@@ -172,6 +173,8 @@ def test_proc_gives_this_process_s_cpu_time_and_affinity() -> None:
     assert process_cpu_seconds(2**22 + 12345) is None
     cores = os.sched_getaffinity(0)
     assert process_core(os.getpid()) == (next(iter(cores)) if len(cores) == 1 else None)
+    assert process_core(2**22 + 12345) is None  # gone
+    assert (single_cpu({3}), single_cpu({0, 1}), single_cpu(set())) == (3, None, None)
 
 
 US = 1000  # ns

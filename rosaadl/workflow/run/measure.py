@@ -54,6 +54,7 @@ __all__ = [
     "thread_cpu_ns",
     "cpu_seconds_between",
     "process_cpus",
+    "single_cpu",
     "process_core",
     "measurements_document",
     "chain_plans",
@@ -192,11 +193,14 @@ def process_cpus(pid: int) -> set[int]:
         return set()
 
 
-def process_core(pid: int, cpus: set[int] | None = None) -> int | None:
-    """The one core process ``pid`` may run on (``cpus``: its affinity, when already read), None
-    when it may run on several (or is gone)."""
-    cpus = process_cpus(pid) if cpus is None else cpus
+def single_cpu(cpus: set[int]) -> int | None:
+    """The CPU of an affinity of one CPU, None for several (or none)."""
     return next(iter(cpus)) if len(cpus) == 1 else None
+
+
+def process_core(pid: int) -> int | None:
+    """The one core process ``pid`` may run on, None when it may run on several (or is gone)."""
+    return single_cpu(process_cpus(pid))
 
 
 def _stats(values: list[float]) -> dict[str, float] | None:

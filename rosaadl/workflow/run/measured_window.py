@@ -20,10 +20,10 @@ from rosaadl.workflow.run.measure import (
     TRACE_PARAMETERS,
     cpu_seconds_between,
     measurements_document,
-    process_core,
     process_cpu_seconds,
     process_cpus,
     read_traces,
+    single_cpu,
     thread_cpu_ns,
 )
 from rosaadl.workflow.run.profiles import run_profile
@@ -58,7 +58,6 @@ class MeasuredWindow:
         self.started_ns = self.ended_ns = 0
         self.cpu_before: dict[str, float | None] = {}
         self.cpu_after: dict[str, float | None] = {}
-        self.cores: dict[str, int | None] = {}
         self.threads_before: dict[str, dict[int, int] | None] = {}
         self.threads_after: dict[str, dict[int, int] | None] = {}
         self.gauges = CpuSpeedGauges(folder / TRACE_FOLDER)
@@ -83,10 +82,8 @@ class MeasuredWindow:
     def begin(self) -> None:
         self.threads_before = self._sample_threads()
         self.cpu_before = self._sample()
-        started = [p for p in self.processes if p.process is not None]
-        self.allowed = {p.node.full_name: process_cpus(p.process.pid) for p in started}
-        self.cores = {
-            p.node.full_name: process_core(p.process.pid, self.allowed[p.node.full_name]) for p in started
+        self.allowed = {
+            p.node.full_name: process_cpus(p.process.pid) for p in self.processes if p.process is not None
         }
         self.gauges.start(set().union(*self.allowed.values()))
         self.started_ns = time.monotonic_ns()
@@ -129,7 +126,7 @@ class MeasuredWindow:
             nodes=plan.nodes,
             traces=read_traces(self.traces, (self.started_ns, self.ended_ns)),
             cpu_load=cpu_load,
-            cores=self.cores,
+            cores={name: single_cpu(cpus) for name, cpus in self.allowed.items()},
             topics=result.topics,
             chains=options.chains,
             run={
